@@ -1,0 +1,32 @@
+# Every dependency is a Debian package; a missing one stops configuration with its package name.
+
+function(physlab_missing what package)
+  message(FATAL_ERROR "PhysLab needs ${what}. Install it with `./physlab setup` "
+                      "(or: sudo apt-get install ${package}).")
+endfunction()
+
+find_package(Eigen3 3.4 CONFIG QUIET)
+if(NOT Eigen3_FOUND)
+  physlab_missing("Eigen 3.4" libeigen3-dev)
+endif()
+
+find_package(Catch2 2.13 CONFIG QUIET)
+if(NOT Catch2_FOUND)
+  physlab_missing("Catch2 2.13" catch2)
+endif()
+include(Catch)
+
+find_path(GNUPLOT_IOSTREAM_INCLUDE_DIR gnuplot-iostream.h)
+if(NOT GNUPLOT_IOSTREAM_INCLUDE_DIR)
+  physlab_missing("gnuplot-iostream" libgnuplot-iostream-dev)
+endif()
+find_package(Boost 1.74 QUIET COMPONENTS iostreams)
+if(NOT Boost_IOSTREAMS_FOUND)
+  physlab_missing("Boost.Iostreams (for gnuplot-iostream)" libboost-iostreams-dev)
+endif()
+find_program(GNUPLOT_EXECUTABLE gnuplot)
+if(NOT GNUPLOT_EXECUTABLE)
+  physlab_missing("gnuplot (to draw the charts)" gnuplot-nox)
+endif()
+
+find_package(Threads REQUIRED)

@@ -1,0 +1,78 @@
+/// \file error.hpp
+/// \brief The two errors PhysLab throws: a stub not yet written, and input that makes no sense.
+#pragma once
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "physlab/math.hpp"
+
+namespace physlab {
+
+/// Thrown by every student stub until it is implemented.
+/// The grader reports it as "not implemented" rather than as a crash.
+class NotImplemented : public std::logic_error {
+ public:
+  /// \param function the function that is still a stub, e.g. "explicitEuler"
+  /// \param section  the handout section that explains it, e.g. "Lab 1, section 3.1"
+  NotImplemented(const std::string& function, const std::string& section)
+      : std::logic_error("not implemented: " + function + " (see " + section + ")") {}
+};
+
+/// The body of a student stub: throws NotImplemented. The stub passes its parameters along so
+/// that the compiler sees them used (no warnings) and the signature stays the solution's.
+template <class... Unused>
+[[noreturn]] void notImplemented(const char* function, const char* section, const Unused&... /*args*/) {
+  throw NotImplemented(function, section);
+}
+
+/// Thrown when a caller passes input that has no physical meaning: a negative mass, a
+/// non-positive step, a NaN in a state, vectors of mismatched sizes. The message names it.
+class InvalidInput : public std::invalid_argument {
+ public:
+  explicit InvalidInput(const std::string& what) : std::invalid_argument("invalid input: " + what) {}
+};
+
+/// Thrown when a numerical method fails on valid input (e.g. Newton's method does not converge).
+class NumericalFailure : public std::runtime_error {
+ public:
+  explicit NumericalFailure(const std::string& what) : std::runtime_error("numerical failure: " + what) {}
+};
+
+/// Throw InvalidInput naming `what` unless `value` is finite and strictly positive.
+inline void requirePositive(double value, const std::string& what) {
+  if (!(std::isfinite(value) && value > 0.0)) {
+    throw InvalidInput(what + " must be positive and finite, got " + std::to_string(value));
+  }
+}
+
+/// Throw InvalidInput naming `what` unless `value` is finite and not negative.
+inline void requireNonNegative(double value, const std::string& what) {
+  if (!(std::isfinite(value) && value >= 0.0)) {
+    throw InvalidInput(what + " must be non-negative and finite, got " + std::to_string(value));
+  }
+}
+
+/// Throw InvalidInput naming `what` and the first bad entry unless every entry is finite.
+template <class Derived>
+void requireFinite(const Eigen::DenseBase<Derived>& values, const std::string& what) {
+  for (Index j = 0; j < values.cols(); ++j) {
+    for (Index i = 0; i < values.rows(); ++i) {
+      if (!std::isfinite(values(i, j))) {
+        throw InvalidInput(what + " has a non-finite entry at (" + std::to_string(i) + ", " +
+                           std::to_string(j) + ")");
+      }
+    }
+  }
+}
+
+/// Throw InvalidInput unless `actual == expected`, naming both sizes.
+inline void requireSize(Index actual, Index expected, const std::string& what) {
+  if (actual != expected) {
+    throw InvalidInput(what + " has size " + std::to_string(actual) + ", expected " +
+                       std::to_string(expected));
+  }
+}
+
+}  // namespace physlab

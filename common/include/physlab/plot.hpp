@@ -1,0 +1,81 @@
+/// \file plot.hpp
+/// \brief Charts and animations drawn by gnuplot without a display (PNG, SVG, animated GIF).
+///
+/// \code
+///   Chart chart("Energy drift", "time [s]", "|E - E0| / |E0|");
+///   chart.logY().add({"RK4", t, err});
+///   for (const std::string& path : chart.save("out/energy")) std::cout << path << '\n';
+/// \endcode
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "physlab/math.hpp"
+
+namespace physlab {
+
+/// One line or point set of a chart.
+struct Series {
+  std::string title;        ///< legend entry
+  std::vector<double> x;    ///< abscissae
+  std::vector<double> y;    ///< ordinates, same length as x
+  std::string style = "linespoints";  ///< gnuplot style: "lines", "points", "linespoints", ...
+};
+
+/// A vertical marker line with a label (e.g. a stability boundary).
+struct Marker {
+  double x;           ///< where the line stands
+  std::string label;  ///< text written beside it
+};
+
+/// A 2D chart with optional logarithmic axes, written as PNG and SVG.
+class Chart {
+ public:
+  Chart(std::string title, std::string xlabel, std::string ylabel);
+  Chart& logX();                         ///< logarithmic x axis
+  Chart& logY();                         ///< logarithmic y axis
+  Chart& yRange(double lo, double hi);   ///< fixed y range
+  Chart& add(Series series);             ///< adds a series; throws InvalidInput on x/y size mismatch
+  Chart& mark(Marker marker);            ///< adds a vertical marker
+  /// Writes `stem`.png and `stem`.svg (creating the folder) and returns both paths. Points that
+  /// a log axis cannot show (non-positive, non-finite) are left out.
+  std::vector<std::string> save(const std::string& stem) const;
+
+ private:
+  std::string title_, xlabel_, ylabel_;
+  bool log_x_ = false, log_y_ = false;
+  bool fixed_y_ = false;
+  double y_lo_ = 0.0, y_hi_ = 1.0;
+  std::vector<Series> series_;
+  std::vector<Marker> markers_;
+};
+
+/// One drawable set of points in an animation frame.
+struct Layer {
+  Mat3X points;        ///< 3 x n points (z ignored in 2D)
+  std::string style;   ///< gnuplot style, e.g. "points pt 7 ps 2" or "lines lw 2"
+  std::string title;   ///< legend entry; empty for none
+};
+
+/// An animated GIF built frame by frame, in 2D (plot) or 3D (splot) with fixed axis ranges.
+class Animation {
+ public:
+  /// \param title chart title
+  /// \param lo,hi  lower and upper corners of the fixed view box (z used in 3D only)
+  /// \param three_d draw with splot (3D view) instead of plot
+  Animation(std::string title, const Vec3& lo, const Vec3& hi, bool three_d);
+  /// Appends a frame; `caption` is written under the title (e.g. the time).
+  void addFrame(std::vector<Layer> layers, const std::string& caption);
+  /// Writes the GIF (`delay_cs` hundredths of a second between frames) and returns its path.
+  std::string save(const std::string& path, int delay_cs = 4) const;
+
+ private:
+  std::string title_;
+  Vec3 lo_, hi_;
+  bool three_d_;
+  std::vector<std::vector<Layer>> frames_;
+  std::vector<std::string> captions_;
+};
+
+}  // namespace physlab

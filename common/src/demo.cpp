@@ -1,0 +1,85 @@
+#include "physlab/demo.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+#include "physlab/error.hpp"
+
+namespace physlab {
+
+DemoOptions parseDemoOptions(int argc, char** argv, const std::string& what) {
+  DemoOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << what << "\n\nusage: " << argv[0] << " [--out DIR] [--quick]\n"
+                << "  --out DIR  folder for charts and tables (default: charts)\n"
+                << "  --quick    shorter runs, for CI\n";
+      std::exit(0);
+    } else if (arg == "--quick") {
+      options.quick = true;
+    } else if (arg == "--out") {
+      if (i + 1 >= argc) throw InvalidInput("--out needs a folder");
+      options.out = argv[++i];
+    } else {
+      throw InvalidInput("unknown option '" + arg + "' (try --help)");
+    }
+  }
+  return options;
+}
+
+Table::Table(std::vector<std::string> header) : header_(std::move(header)) {}
+
+void Table::add(std::vector<std::string> row) {
+  requireSize(static_cast<Index>(row.size()), static_cast<Index>(header_.size()), "table row");
+  rows_.push_back(std::move(row));
+}
+
+void Table::print(std::ostream& os) const {
+  std::vector<std::size_t> width(header_.size());
+  for (std::size_t c = 0; c < header_.size(); ++c) {
+    width[c] = header_[c].size();
+    for (const auto& row : rows_) width[c] = std::max(width[c], row[c].size());
+  }
+  auto line = [&](const std::vector<std::string>& cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      os << (c ? "  " : "") << std::setw(static_cast<int>(width[c])) << std::left << cells[c];
+    }
+    os << "\n";
+  };
+  line(header_);
+  std::size_t total = 2 * (header_.size() - 1);
+  for (std::size_t w : width) total += w;
+  os << std::string(total, '-') << "\n";
+  for (const auto& row : rows_) line(row);
+}
+
+std::string Table::saveMarkdown(const std::string& path) const {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  std::ofstream out(path);
+  auto line = [&](const std::vector<std::string>& cells) {
+    out << "|";
+    for (const auto& cell : cells) out << " " << cell << " |";
+    out << "\n";
+  };
+  line(header_);
+  out << "|";
+  for (std::size_t c = 0; c < header_.size(); ++c) out << "---|";
+  out << "\n";
+  for (const auto& row : rows_) line(row);
+  return path;
+}
+
+std::string fmt(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+}  // namespace physlab

@@ -1,0 +1,171 @@
+#include "physlab/plot.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <utility>
+
+#include <gnuplot-iostream.h>
+
+#include "physlab/error.hpp"
+
+namespace physlab {
+namespace {
+
+// Gnuplot strings are single-quoted; a quote inside is doubled.
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+void makeParentFolder(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
+}  // namespace
+
+Chart::Chart(std::string title, std::string xlabel, std::string ylabel)
+    : title_(std::move(title)), xlabel_(std::move(xlabel)), ylabel_(std::move(ylabel)) {}
+
+Chart& Chart::logX() {
+  log_x_ = true;
+  return *this;
+}
+
+Chart& Chart::logY() {
+  log_y_ = true;
+  return *this;
+}
+
+Chart& Chart::yRange(double lo, double hi) {
+  fixed_y_ = true;
+  y_lo_ = lo;
+  y_hi_ = hi;
+  return *this;
+}
+
+Chart& Chart::add(Series series) {
+  if (series.x.size() != series.y.size()) {
+    throw InvalidInput("chart series '" + series.title + "' has " +
+                       std::to_string(series.x.size()) + " x values and " +
+                       std::to_string(series.y.size()) + " y values");
+  }
+  series_.push_back(std::move(series));
+  return *this;
+}
+
+Chart& Chart::mark(Marker marker) {
+  markers_.push_back(std::move(marker));
+  return *this;
+}
+
+std::vector<std::string> Chart::save(const std::string& stem) const {
+  makeParentFolder(stem);
+  // Keep only the points the axes can show, so gnuplot never meets log(0).
+  std::vector<std::vector<std::pair<double, double>>> data;
+  for (const Series& s : series_) {
+    std::vector<std::pair<double, double>> kept;
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      const bool ok = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) &&
+                      (!log_x_ || s.x[i] > 0.0) && (!log_y_ || s.y[i] > 0.0);
+      if (ok) kept.emplace_back(s.x[i], s.y[i]);
+    }
+    data.push_back(std::move(kept));
+  }
+  std::vector<std::string> paths;
+  const std::vector<std::pair<std::string, std::string>> terminals = {
+      {".png", "pngcairo size 960,600 enhanced font 'Sans,11'"},
+      {".svg", "svg size 960,600 enhanced font 'Sans,11' background '#ffffff'"}};
+  for (const auto& [extension, terminal] : terminals) {
+    const std::string path = stem + extension;
+    Gnuplot gp("gnuplot");
+    gp << "set terminal " << terminal << "\n"
+       << "set output " << quoted(path) << "\n"
+       << "set title " << quoted(title_) << "\n"
+       << "set xlabel " << quoted(xlabel_) << "\nset ylabel " << quoted(ylabel_) << "\n"
+       << "set grid\nset key outside right\nset format y '%g'\n";
+    if (log_x_) gp << "set logscale x\nset format x '10^{%L}'\n";
+    if (log_y_) gp << "set logscale y\nset format y '10^{%L}'\n";
+    if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
+    for (const Marker& m : markers_) {
+      gp << "set arrow from " << m.x << ", graph 0 to " << m.x
+         << ", graph 1 nohead dashtype 2 lw 1.5 lc rgb '#555555'\n"
+         << "set label " << quoted(m.label) << " at " << m.x
+         << ", graph 0.96 left offset 0.5,0 font ',9'\n";
+    }
+    std::ostringstream plot;
+    plot << "plot ";
+    bool first = true;
+    for (std::size_t i = 0; i < series_.size(); ++i) {
+      if (data[i].empty()) continue;
+      plot << (first ? "" : ", ") << "'-' with " << series_[i].style << " lw 2 title "
+           << quoted(series_[i].title);
+      first = false;
+    }
+    if (first) {
+      gp << "set label 'no data to show' at graph 0.4, graph 0.5\nplot [0:1] NaN notitle\n";
+    } else {
+      gp << plot.str() << "\n";
+      for (const auto& d : data) {
+        if (!d.empty()) gp.send1d(d);
+      }
+    }
+    gp << "unset output\n";
+    paths.push_back(path);
+  }
+  return paths;
+}
+
+Animation::Animation(std::string title, const Vec3& lo, const Vec3& hi, bool three_d)
+    : title_(std::move(title)), lo_(lo), hi_(hi), three_d_(three_d) {}
+
+void Animation::addFrame(std::vector<Layer> layers, const std::string& caption) {
+  frames_.push_back(std::move(layers));
+  captions_.push_back(caption);
+}
+
+std::string Animation::save(const std::string& path, int delay_cs) const {
+  makeParentFolder(path);
+  Gnuplot gp("gnuplot");
+  gp << "set terminal gif animate delay " << delay_cs << " size 640,640 optimize\n"
+     << "set output " << quoted(path) << "\n"
+     << "set xrange [" << lo_.x() << ":" << hi_.x() << "]\n"
+     << "set yrange [" << lo_.y() << ":" << hi_.y() << "]\n"
+     << "set key top right\n";
+  if (three_d_) {
+    gp << "set zrange [" << lo_.z() << ":" << hi_.z() << "]\nset view 65, 30\n"
+       << "set ticslevel 0\nset xyplane at " << lo_.z() << "\n";
+  } else {
+    gp << "set size ratio -1\n";
+  }
+  for (std::size_t f = 0; f < frames_.size(); ++f) {
+    gp << "set title " << quoted(title_ + "   " + captions_[f]) << "\n";
+    std::ostringstream plot;
+    plot << (three_d_ ? "splot " : "plot ");
+    for (std::size_t l = 0; l < frames_[f].size(); ++l) {
+      const Layer& layer = frames_[f][l];
+      plot << (l ? ", " : "") << "'-' with " << layer.style
+           << (layer.title.empty() ? std::string(" notitle") : " title " + quoted(layer.title));
+    }
+    gp << plot.str() << "\n";
+    for (const Layer& layer : frames_[f]) {
+      for (Index i = 0; i < layer.points.cols(); ++i) {
+        // A NaN column breaks a line into separate segments, as gnuplot's blank line does.
+        if (!layer.points.col(i).allFinite()) {
+          gp << "\n";
+          continue;
+        }
+        gp << layer.points(0, i) << " " << layer.points(1, i);
+        if (three_d_) gp << " " << layer.points(2, i);
+        gp << "\n";
+      }
+      gp << "e\n";
+    }
+  }
+  gp << "unset output\n";
+  return path;
+}
+
+}  // namespace physlab

@@ -1,0 +1,62 @@
+#include "physlab/system.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "physlab/error.hpp"
+
+namespace physlab {
+
+void System::positionRate(const VecX& X, Eigen::Ref<VecX> qdot) const {
+  requireSize(X.size(), size(), name() + " state");
+  requireSize(qdot.size(), positionSize(), name() + " position rate");
+  computePositionRate(X, qdot);
+}
+
+void System::velocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
+  requireSize(X.size(), size(), name() + " state");
+  requireSize(pdot.size(), velocitySize(), name() + " velocity rate");
+  ++force_evaluations_;
+  computeVelocityRate(X, pdot);
+}
+
+void System::derivative(const VecX& X, VecX& dXdt) const {
+  requireSize(X.size(), size(), name() + " state");
+  dXdt.resize(size());
+  computePositionRate(X, dXdt.head(positionSize()));
+  ++force_evaluations_;
+  computeVelocityRate(X, dXdt.tail(velocitySize()));
+}
+
+MatX System::jacobian(const VecX& X) const {
+  validateState(X);
+  MatX J = MatX::Zero(size(), size());
+  if (computeJacobian(X, J)) return J;
+  // Central differences: error O(eps^2) against round-off O(1e-16 / eps); eps ~ cbrt(machine
+  // epsilon) balances the two at about 1e-11 relative.
+  const double scale = std::cbrt(std::numeric_limits<double>::epsilon());
+  VecX Xp = X;
+  VecX fp(size());
+  VecX fm(size());
+  for (Index j = 0; j < size(); ++j) {
+    const double eps = scale * std::max(1.0, std::abs(X[j]));
+    Xp[j] = X[j] + eps;
+    derivative(Xp, fp);
+    Xp[j] = X[j] - eps;
+    derivative(Xp, fm);
+    Xp[j] = X[j];
+    J.col(j) = (fp - fm) / (2.0 * eps);
+  }
+  return J;
+}
+
+void System::project(VecX& /*X*/) const {}
+
+bool System::computeJacobian(const VecX& /*X*/, MatX& /*J*/) const { return false; }
+
+void System::validateState(const VecX& X, const std::string& what) const {
+  requireSize(X.size(), size(), name() + " " + what);
+  requireFinite(X, name() + " " + what);
+}
+
+}  // namespace physlab

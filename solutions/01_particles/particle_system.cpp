@@ -1,0 +1,26 @@
+// Lab 1, section 2: the derivative of a particle system, dX/dt = [v, F/m].
+#include <cmath>
+
+#include "physlab/error.hpp"
+#include "physlab/particles.hpp"
+
+namespace physlab {
+
+void ParticleSystem::computePositionRate(const VecX& X, Eigen::Ref<VecX> qdot) const {
+  // The positions change with the velocities
+  qdot = X.tail(velocitySize());
+}
+
+void ParticleSystem::computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
+  // Accumulate every force into F
+  pdot.setZero();
+  Points F(pdot.data(), 3, count());
+  const ParticleView s = view(X);
+  for (const auto& force : forces_) force->accumulate(s, F);
+  // Divide by the masses; a pinned particle (infinite mass) gets no acceleration
+  for (Index i = 0; i < count(); ++i) {
+    F.col(i) *= std::isinf(masses_[i]) ? 0.0 : 1.0 / masses_[i];
+  }
+}
+
+}  // namespace physlab
