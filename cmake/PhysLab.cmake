@@ -123,9 +123,10 @@ function(physlab_add_lab stage)
     add_executable(bench_${stage} ${bench_sources})
     target_link_libraries(bench_${stage} PRIVATE physlab_${stage}_ref)
     physlab_warnings(bench_${stage})
-    if(COMMAND physlab_bench_peers_${stage})
-      cmake_language(CALL physlab_bench_peers_${stage} bench_${stage})
-    endif()
+    # Optional peer engines (Bullet, MuJoCo, Boost.Odeint, ...): cmake/peers/NN_name.cmake may
+    # link them into the benchmark when installed; nothing else ever needs them.
+    set(PHYSLAB_BENCH_TARGET bench_${stage})
+    include("${PHYSLAB_ROOT}/cmake/peers/${stage}.cmake" OPTIONAL)
   endif()
   set_property(GLOBAL APPEND PROPERTY PHYSLAB_STAGES ${stage})
 endfunction()
