@@ -28,7 +28,7 @@ function(physlab_add_common)
   add_library(physlab_common STATIC ${sources})
   target_include_directories(physlab_common PUBLIC "${PHYSLAB_ROOT}/common/include")
   target_include_directories(physlab_common SYSTEM PRIVATE "${GNUPLOT_IOSTREAM_INCLUDE_DIR}")
-  target_link_libraries(physlab_common PUBLIC Eigen3::Eigen PRIVATE Boost::iostreams)
+  target_link_libraries(physlab_common PUBLIC Eigen3::Eigen PRIVATE Boost::iostreams Boost::filesystem)
   physlab_warnings(physlab_common)
 
   # One precompiled header (Catch2 + Eigen) shared by every test object library.

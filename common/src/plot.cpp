@@ -89,11 +89,13 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     if (log_x_) gp << "set logscale x\nset format x '10^{%L}'\n";
     if (log_y_) gp << "set logscale y\nset format y '10^{%L}'\n";
     if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
-    for (const Marker& m : markers_) {
+    for (std::size_t i = 0; i < markers_.size(); ++i) {
+      // Stagger the labels downwards so that neighbouring markers do not overwrite each other.
+      const Marker& m = markers_[i];
       gp << "set arrow from " << m.x << ", graph 0 to " << m.x
          << ", graph 1 nohead dashtype 2 lw 1.5 lc rgb '#555555'\n"
-         << "set label " << quoted(m.label) << " at " << m.x
-         << ", graph 0.96 left offset 0.5,0 font ',9'\n";
+         << "set label " << quoted(m.label) << " at " << m.x << ", graph " << 0.96 - 0.05 * i
+         << " left offset 0.5,0 font ',9'\n";
     }
     std::ostringstream plot;
     plot << "plot ";

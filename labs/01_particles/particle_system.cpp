@@ -15,8 +15,8 @@ void ParticleSystem::computePositionRate(const VecX& X, Eigen::Ref<VecX> qdot) c
 void ParticleSystem::computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
   // Accumulate every force into F
   // TODO(student): accumulate every force into F.
-  // Divide by the masses; a pinned particle (infinite mass) gets no acceleration
-  // TODO(student): divide by the masses; a pinned particle (infinite mass) gets no acceleration.
+  // Divide by the masses: multiply by 1/m, which is 0 for a pinned particle
+  // TODO(student): divide by the masses: multiply by 1/m, which is 0 for a pinned particle.
   notImplemented("ParticleSystem::computeVelocityRate", "Lab 1 handout, section 2", X, pdot);
 }
 

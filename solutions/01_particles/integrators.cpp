@@ -74,9 +74,11 @@ void verlet(const System& sys, double h, VecX& X, Workspace& ws) {
 
 void implicitEuler(const System& sys, double h, VecX& X, Workspace& ws,
                    const NewtonSettings& newton) {
-  // Start Newton's method from the current state
+  // Start Newton's method from an explicit Euler prediction of the end of the step
   const VecX& X_n = ws.X_tmp = X;
   const Index n = sys.size();
+  sys.derivative(X_n, ws.k1);
+  X += h * ws.k1;
   for (int iteration = 0; iteration < newton.max_iterations; ++iteration) {
     // Form the residual G(X) = X - X_n - h f(X)
     sys.derivative(X, ws.k1);

@@ -17,10 +17,8 @@ void ParticleSystem::computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) c
   Points F(pdot.data(), 3, count());
   const ParticleView s = view(X);
   for (const auto& force : forces_) force->accumulate(s, F);
-  // Divide by the masses; a pinned particle (infinite mass) gets no acceleration
-  for (Index i = 0; i < count(); ++i) {
-    F.col(i) *= std::isinf(masses_[i]) ? 0.0 : 1.0 / masses_[i];
-  }
+  // Divide by the masses: multiply by 1/m, which is 0 for a pinned particle
+  F.array().rowwise() *= inverse_masses_.transpose().array();
 }
 
 }  // namespace physlab

@@ -57,6 +57,9 @@ inline void requireNonNegative(double value, const std::string& what) {
 /// Throw InvalidInput naming `what` and the first bad entry unless every entry is finite.
 template <class Derived>
 void requireFinite(const Eigen::DenseBase<Derived>& values, const std::string& what) {
+  // A sum is finite exactly when no entry is NaN or infinite (barring overflow, which the loop
+  // below then clears): one vectorised pass in the common case, the search only on failure.
+  if (std::isfinite(values.sum())) return;
   for (Index j = 0; j < values.cols(); ++j) {
     for (Index i = 0; i < values.rows(); ++i) {
       if (!std::isfinite(values(i, j))) {

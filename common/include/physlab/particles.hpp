@@ -139,6 +139,8 @@ class ParticleSystem final : public System {
 
   Index count() const { return masses_.size(); }                  ///< number of particles n
   const VecX& masses() const { return masses_; }                   ///< masses [kg], length n
+  /// Inverse masses \f$1/m_i\f$ [1/kg], length n; 0 for a pinned particle.
+  const VecX& inverseMasses() const { return inverse_masses_; }
   const std::vector<std::shared_ptr<const Force>>& forces() const { return forces_; }
   Index positionSize() const override { return 3 * count(); }
   Index velocitySize() const override { return 3 * count(); }
@@ -157,6 +159,7 @@ class ParticleSystem final : public System {
 
  private:
   VecX masses_;
+  VecX inverse_masses_;
   std::vector<std::shared_ptr<const Force>> forces_;
 };
 

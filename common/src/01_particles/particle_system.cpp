@@ -46,6 +46,7 @@ ParticleSystem::ParticleSystem(VecX masses) : masses_(std::move(masses)) {
                          std::to_string(m));
     }
   }
+  inverse_masses_ = masses_.cwiseInverse();  // 1 / inf = 0: a pinned particle never accelerates
 }
 
 void ParticleSystem::addForce(std::shared_ptr<const Force> force) {
@@ -87,9 +88,8 @@ bool ParticleSystem::computeJacobian(const VecX& X, MatX& J) const {
   }
   J.topRightCorner(n3, n3).setIdentity();
   for (Index i = 0; i < n3; ++i) {
-    const double inv_m = 1.0 / masses_[i / 3];
-    J.bottomLeftCorner(n3, n3).row(i) = inv_m * dF_dx.row(i);
-    J.bottomRightCorner(n3, n3).row(i) = inv_m * dF_dv.row(i);
+    J.bottomLeftCorner(n3, n3).row(i) = inverse_masses_[i / 3] * dF_dx.row(i);
+    J.bottomRightCorner(n3, n3).row(i) = inverse_masses_[i / 3] * dF_dv.row(i);
   }
   return true;
 }

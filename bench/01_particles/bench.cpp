@@ -1,0 +1,109 @@
+// Lab 1 benchmark: time per particle-step of every explicit integrator on gravity + drag for
+// N = 10^3 ... 10^6, next to a memory-bandwidth bound measured in the same run, and RK4 next to
+// Boost.Odeint's runge_kutta4 on the same system.
+//
+// The bound: any one-step method must at least read the state and write it back. A STREAM-style
+// triad a = b + s c over arrays of the state's length (6N doubles) is the cheapest such update,
+// so "steps cost k triads" says how far a method is from the memory floor.
+#include <algorithm>
+#include <iostream>
+#include <memory>
+#include <random>
+
+#if __has_include(<boost/numeric/odeint.hpp>)
+#include <boost/numeric/odeint.hpp>
+#include <boost/numeric/odeint/external/eigen/eigen.hpp>
+#define PHYSLAB_HAVE_ODEINT 1
+#endif
+
+#include "physlab/demo.hpp"
+#include "physlab/integrators.hpp"
+#include "physlab/particles.hpp"
+
+using namespace physlab;
+
+namespace {
+
+// Seconds per call of `work`, the best of several batches of at least `min_seconds`: the
+// minimum filters out other processes on a shared machine.
+template <class Work>
+double secondsPerCall(Work&& work, double min_seconds) {
+  double best = 1e300;
+  for (int batch = 0; batch < 3; ++batch) {
+    Stopwatch clock;
+    long calls = 0;
+    do {
+      work();
+      ++calls;
+    } while (clock.seconds() < min_seconds);
+    best = std::min(best, clock.seconds() / calls);
+  }
+  return best;
+}
+
+double triadSeconds(Index length, double min_seconds) {
+  VecX a = VecX::Zero(length), b = VecX::Random(length), c = VecX::Random(length);
+  const double s = 1e-3;
+  return secondsPerCall([&] { a.noalias() = b + s * c; b.swap(a); }, min_seconds);
+}
+
+std::shared_ptr<ParticleSystem> gravityAndDrag(Index n) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> mass(0.5, 2.0);
+  VecX m(n);
+  for (Index i = 0; i < n; ++i) m[i] = mass(rng);
+  auto sys = std::make_shared<ParticleSystem>(m);
+  sys->addForce(std::make_shared<UniformGravity>(Vec3(0, 0, -9.81)));
+  sys->addForce(std::make_shared<ViscousDrag>(0.1));
+  return sys;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const DemoOptions options = parseDemoOptions(
+        argc, argv, "Lab 1 benchmark: integrator cost per particle-step against a bandwidth bound.");
+    const double min_seconds = options.quick ? 0.05 : 0.3;
+    const std::vector<Index> sizes = options.quick ? std::vector<Index>{1000, 100000}
+                                                   : std::vector<Index>{1000, 10000, 100000, 1000000};
+    Table table({"N", "integrator", "ns / particle-step", "triad ns / particle", "cost in triads"});
+    for (Index n : sizes) {
+      const std::shared_ptr<ParticleSystem> sys = gravityAndDrag(n);
+      const VecX X0 = VecX::Random(sys->size());
+      const double triad = triadSeconds(sys->size(), min_seconds);
+      for (Method method : kAllMethods) {
+        // Implicit Euler here is dense Newton, O(N^3): Lab 2 builds the sparse version.
+        if (method == Method::ImplicitEuler) continue;
+        VecX X = X0;
+        Integrator integrator(method);
+        const double step = secondsPerCall([&] { integrator.step(*sys, X, 1e-4); }, min_seconds);
+        table.add({std::to_string(n), methodName(method), fmt(1e9 * step / n),
+                   fmt(1e9 * triad / n), fmt(step / triad)});
+      }
+#ifdef PHYSLAB_HAVE_ODEINT
+      {
+        // Boost.Odeint's RK4 calling the same System::derivative: the ratio isolates the
+        // integrator's own overhead (its stage arithmetic and temporaries).
+        namespace odeint = boost::numeric::odeint;
+        odeint::runge_kutta4<VecX, double, VecX, double, odeint::vector_space_algebra> stepper;
+        VecX X = X0;
+        auto rhs = [&](const VecX& x, VecX& dxdt, double) { sys->derivative(x, dxdt); };
+        const double step = secondsPerCall([&] { stepper.do_step(rhs, X, 0.0, 1e-4); }, min_seconds);
+        VecX Y = X0;
+        Integrator ours(Method::RK4);
+        const double mine = secondsPerCall([&] { ours.step(*sys, Y, 1e-4); }, min_seconds);
+        table.add({std::to_string(n), "Boost.Odeint RK4", fmt(1e9 * step / n), fmt(1e9 * triad / n),
+                   fmt(step / triad) + " (ours/odeint " + fmt(mine / step) + ")"});
+      }
+#endif
+    }
+    std::cout << "Lab 1 benchmark: gravity + drag, one step per call, best of 3 batches\n";
+    table.print(std::cout);
+    std::cout << "\nwrote " << table.saveMarkdown(options.out + "/lab01_bench.md") << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "bench_01_particles: " << e.what() << "\n";
+    return 1;
+  }
+}
