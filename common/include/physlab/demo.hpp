@@ -40,6 +40,7 @@ class Stopwatch {
 /// A table printed with aligned columns, and writable as Markdown for the docs.
 class Table {
  public:
+  /// A table with these column headings.
   explicit Table(std::vector<std::string> header);
   /// Adds a row; throws InvalidInput when its length differs from the header's.
   void add(std::vector<std::string> row);

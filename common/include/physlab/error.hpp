@@ -31,12 +31,14 @@ template <class... Unused>
 /// non-positive step, a NaN in a state, vectors of mismatched sizes. The message names it.
 class InvalidInput : public std::invalid_argument {
  public:
+  /// \param what what was wrong, naming the argument (e.g. "step size h must be positive")
   explicit InvalidInput(const std::string& what) : std::invalid_argument("invalid input: " + what) {}
 };
 
 /// Thrown when a numerical method fails on valid input (e.g. Newton's method does not converge).
 class NumericalFailure : public std::runtime_error {
  public:
+  /// \param what which method failed and why
   explicit NumericalFailure(const std::string& what) : std::runtime_error("numerical failure: " + what) {}
 };
 

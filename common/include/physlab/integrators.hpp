@@ -60,6 +60,7 @@ struct NewtonSettings {
 /// `X` has length sys.size() and finite entries, `h > 0`, and every vector in `ws` has length
 /// sys.size(); the Integrator class guarantees all three.
 ///@{
+
 /// \f$X_{n+1} = X_n + h f(X_n)\f$. Handout: Lab 1, section 3.1.
 void explicitEuler(const System& sys, double h, VecX& X, Workspace& ws);
 /// \f$p_{n+1} = p_n + h\,\dot p(q_n, p_n)\f$; \f$q_{n+1} = q_n + h\,\dot q(q_n, p_{n+1})\f$.

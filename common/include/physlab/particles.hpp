@@ -141,6 +141,7 @@ class ParticleSystem final : public System {
   const VecX& masses() const { return masses_; }                   ///< masses [kg], length n
   /// Inverse masses \f$1/m_i\f$ [1/kg], length n; 0 for a pinned particle.
   const VecX& inverseMasses() const { return inverse_masses_; }
+  /// The forces, in the order they were added.
   const std::vector<std::shared_ptr<const Force>>& forces() const { return forces_; }
   Index positionSize() const override { return 3 * count(); }
   Index velocitySize() const override { return 3 * count(); }
@@ -165,6 +166,7 @@ class ParticleSystem final : public System {
 
 /// \name Diagnostics (student functions, Lab 1 section 4)
 ///@{
+
 /// Kinetic energy \f$T = \sum_i \frac12 m_i |v_i|^2\f$ [J]; pinned particles contribute 0.
 double kineticEnergy(const ParticleSystem& sys, const VecX& X);
 /// Potential energy: the sum of every force's potential() [J].

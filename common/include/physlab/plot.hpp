@@ -32,6 +32,7 @@ struct Marker {
 /// A 2D chart with optional logarithmic axes, written as PNG and SVG.
 class Chart {
  public:
+  /// A chart with a title and axis labels (gnuplot enhanced text: ^ and _ make super/subscripts).
   Chart(std::string title, std::string xlabel, std::string ylabel);
   Chart& logX();                         ///< logarithmic x axis
   Chart& logY();                         ///< logarithmic y axis

@@ -2,7 +2,7 @@
 /// \brief The small interface every integrator works on: a second-order system in first-order form.
 ///
 /// A system's state is one flat vector \f$X = [q;\ p]\f$: first the position-like part \f$q\f$
-/// (length #positionSize), then the velocity-like part \f$p\f$ (length #velocitySize). For
+/// (length positionSize()), then the velocity-like part \f$p\f$ (length velocitySize()). For
 /// particles \f$q = [x_1 \dots x_n]\f$ and \f$p = [v_1 \dots v_n]\f$; for a rigid body (Lab 3)
 /// \f$q = [x, q]\f$ and \f$p = [P, L]\f$. The ODE is
 /// \f[ \frac{dX}{dt} = f(X) = \begin{bmatrix} \dot q(q, p) \\ \dot p(q, p) \end{bmatrix}. \f]
