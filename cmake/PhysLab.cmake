@@ -57,7 +57,7 @@ function(physlab_add_framework_tests)
   target_link_libraries(test_common PRIVATE physlab_test_support physlab_01_particles_ref)
   target_precompile_headers(test_common REUSE_FROM physlab_test_pch)
   physlab_warnings(test_common)
-  catch_discover_tests(test_common TEST_PREFIX "common: " PROPERTIES TIMEOUT 60)
+  catch_discover_tests(test_common TEST_PREFIX "common: " PROPERTIES TIMEOUT 60 LABELS solutions)
 endfunction()
 
 # Build the executables `name` (reference) and `name_labs` (student) from the same objects.
@@ -108,7 +108,11 @@ function(physlab_add_lab stage)
   target_precompile_headers(physlab_${stage}_tests REUSE_FROM physlab_test_pch)
   physlab_warnings(physlab_${stage}_tests)
   physlab_variant_executables(test_${stage} ${stage} physlab_${stage}_tests physlab_test_support)
-  catch_discover_tests(test_${stage} TEST_PREFIX "${stage}: " PROPERTIES TIMEOUT 120)
+  catch_discover_tests(test_${stage} TEST_PREFIX "${stage}: " PROPERTIES TIMEOUT 120 LABELS solutions)
+  if(TARGET test_${stage}_labs)
+    catch_discover_tests(test_${stage}_labs TEST_PREFIX "labs ${stage}: "
+                         PROPERTIES TIMEOUT 120 LABELS labs)
+  endif()
 
   # Demo (charts) for both implementations, benchmark for the reference.
   file(GLOB demo_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/demos/${stage}/*.cpp")
