@@ -63,6 +63,13 @@ void implicitEuler(const System& sys, double h, VecX& X, Workspace& ws,
                    const NewtonSettings& newton) {
   // Start Newton's method from an explicit Euler prediction of the end of the step
   // TODO(student): keep X_n (ws.X_tmp = X), then X = X_n + h f(X_n) as the first guess.
+  // TODO(student): loop at most newton.max_iterations times over the three chunks below.
+    // Form the residual G(X) = X - X_n - h f(X)
+    // TODO(student): sys.derivative(X, ws.k1); ws.k2 = X - X_n - h ws.k1.
+    // Solve (1 - h df/dX) dX = -G for the Newton update
+    // TODO(student): A = I - h sys.jacobian(X); A.partialPivLu().solve(-G); add the update to X.
+    // Stop when the update is negligible next to the state
+    // TODO(student): return once |dX| <= newton.tolerance (1 + |X|); after the loop throw NumericalFailure.
   notImplemented("implicitEuler", "Lab 1 handout, section 3.6", sys, h, X, ws, newton);
 }
 
