@@ -1,0 +1,35 @@
+// Lab 3, sections 5-7: the alternatives to integrating qdot - an exact quaternion update, the
+// rotation matrix kept orthonormal, and Euler's equations in the body frame.
+#include <cmath>
+
+#include "physlab/error.hpp"
+#include "physlab/rigid.hpp"
+
+namespace physlab {
+
+Quat exponentialUpdate(const Quat& q, const Vec3& omega, double h) {
+  // Find the angle |omega| h turned in the step
+  const double angle = omega.norm() * h;
+  if (angle == 0.0) return q;
+  // Rotate by it about omega's direction: exp(h omega / 2) q
+  const Quat turn(Eigen::AngleAxisd(angle, omega.normalized()));
+  return turn * q;
+}
+
+Mat3 gramSchmidt(const Mat3& R) {
+  Mat3 Q;
+  // Normalise the first column
+  Q.col(0) = R.col(0).normalized();
+  // Remove its component from the second column and normalise
+  Q.col(1) = (R.col(1) - Q.col(0).dot(R.col(1)) * Q.col(0)).normalized();
+  // Complete a right-handed frame with the cross product
+  Q.col(2) = Q.col(0).cross(Q.col(1));
+  return Q;
+}
+
+Vec3 bodyOmegaRate(const Mat3& inertia_body, const Vec3& omega_body, const Vec3& torque_body) {
+  // Subtract the gyroscopic term omega x I omega from the torque and divide by I
+  return inertia_body.ldlt().solve(torque_body - omega_body.cross(inertia_body * omega_body));
+}
+
+}  // namespace physlab
