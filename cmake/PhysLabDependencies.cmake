@@ -30,3 +30,20 @@ if(NOT GNUPLOT_EXECUTABLE)
 endif()
 
 find_package(Threads REQUIRED)
+
+# Optional peer for benchmarks: Bullet's double-precision build (never needed to build or test).
+# Links it into `target` with PHYSLAB_HAVE_BULLET defined when pkg-config finds it.
+function(physlab_link_bullet target)
+  find_package(PkgConfig QUIET)
+  if(NOT PKG_CONFIG_FOUND)
+    return()
+  endif()
+  if(NOT TARGET PkgConfig::PHYSLAB_BULLET)
+    pkg_check_modules(PHYSLAB_BULLET QUIET IMPORTED_TARGET GLOBAL bullet-float64)
+  endif()
+  if(TARGET PkgConfig::PHYSLAB_BULLET)
+    target_link_libraries(${target} PRIVATE PkgConfig::PHYSLAB_BULLET)
+    target_compile_definitions(${target} PRIVATE PHYSLAB_HAVE_BULLET)
+    message(STATUS "${target}: comparing with Bullet (bullet-float64)")
+  endif()
+endfunction()

@@ -76,6 +76,25 @@ std::string Table::saveMarkdown(const std::string& path) const {
   return path;
 }
 
+bool attempt(const std::string& what, const std::function<void()>& work) {
+  try {
+    work();
+    return true;
+  } catch (const std::exception& e) {
+    std::cout << "  " << what << ": skipped (" << e.what() << ")\n";
+    return false;
+  }
+}
+
+void reportDemo(const std::string& lab, const std::vector<std::string>& written, const Table& table,
+                const std::string& summary_path) {
+  std::cout << "\n" << lab << " charts:\n";
+  for (const auto& path : written) std::cout << "  " << path << "\n";
+  std::cout << "\n" << lab << " summary:\n";
+  table.print(std::cout);
+  table.saveMarkdown(summary_path);
+}
+
 std::string fmt(double value, int digits) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);

@@ -19,18 +19,6 @@ using namespace physlab;
 
 namespace {
 
-// Runs `method` and reports why it could not run (a stub, a Newton failure) instead of
-// stopping the demo: a student's partial lab still gets the charts of what works.
-bool attempt(Method method, const std::function<void()>& work) {
-  try {
-    work();
-    return true;
-  } catch (const std::exception& e) {
-    std::cout << "  " << methodName(method) << ": skipped (" << e.what() << ")\n";
-    return false;
-  }
-}
-
 struct DriftRun {
   std::vector<double> t, error;
   double final_error = NAN;
@@ -90,7 +78,7 @@ void workPrecision(const DemoOptions& options, std::vector<std::string>& written
   for (Method method : kAllMethods) {
     Series evals{methodName(method), {}, {}, "linespoints"};
     Series seconds{methodName(method), {}, {}, "linespoints"};
-    attempt(method, [&] {
+    attempt(methodName(method), [&] {
       for (int level = 0; level < levels; ++level) {
         const long steps = 100L << level;
         if (method == Method::ImplicitEuler && steps < 1600) continue;  // spirals into the sun
@@ -127,7 +115,7 @@ void stabilityChart(const DemoOptions& options, std::vector<std::string>& writte
   chart.logX().yRange(0.0, 2.5);
   for (Method method : kAllMethods) {
     Series s{methodName(method), {}, {}, "lines"};
-    attempt(method, [&] {
+    attempt(methodName(method), [&] {
       for (double hw = 0.01; hw <= 10.0; hw *= 1.02) {
         Eigen::Matrix2d A;
         Integrator integrator(method);
@@ -163,7 +151,7 @@ void nbodyAnimation(const DemoOptions& options, std::vector<std::string>& writte
   const int frames = options.quick ? 30 : 90;
   const long steps_per_frame = std::lround(period / h / frames);
   std::vector<Mat3X> trail;
-  attempt(Method::Verlet, [&] {
+  attempt("N-body animation", [&] {
     for (int f = 0; f < frames; ++f) {
       for (long n = 0; n < steps_per_frame; ++n) verlet.step(*sys, X, h);
       trail.push_back(positions(X));
@@ -197,11 +185,11 @@ int main(int argc, char** argv) {
     const long kepler_steps = std::lround((options.quick ? 10 : 100) * kepler.period(1.0) / kepler_h);
     std::map<Method, DriftRun> osc_runs, kepler_runs;
     for (Method method : kAllMethods) {
-      attempt(method, [&] {
+      attempt(methodName(method), [&] {
         osc_runs[method] = energyDrift(method, osc, [&](const VecX& Y) { return osc.energy(Y); },
                                        Eigen::Vector2d(1.0, 0.0), osc_h, osc_steps);
       });
-      attempt(method, [&] {
+      attempt(methodName(method), [&] {
         kepler_runs[method] = energyDrift(method, kepler, [&](const VecX& Y) { return kepler.energy(Y); },
                                           kepler.perihelionState(1.0, 0.6), kepler_h, kepler_steps);
       });
@@ -226,11 +214,7 @@ int main(int argc, char** argv) {
     stabilityChart(options, written);
     nbodyAnimation(options, written);
 
-    std::cout << "\nLab 1 charts:\n";
-    for (const auto& p : written) std::cout << "  " << p << "\n";
-    std::cout << "\nLab 1 summary (energy drift runs):\n";
-    table.print(std::cout);
-    table.saveMarkdown(options.out + "/lab01_summary.md");
+    reportDemo("Lab 1", written, table, options.out + "/lab01_summary.md");
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "demo_01_particles: " << e.what() << "\n";

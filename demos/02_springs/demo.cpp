@@ -16,17 +16,6 @@ using namespace physlab;
 
 namespace {
 
-// Runs `work`, reporting instead of stopping when it throws (a stub, a solver failure).
-bool attempt(const std::string& what, const std::function<void()>& work) {
-  try {
-    work();
-    return true;
-  } catch (const std::exception& e) {
-    std::cout << "  " << what << ": skipped (" << e.what() << ")\n";
-    return false;
-  }
-}
-
 // A free chain of n particles (mass m) and springs k at rest length 1 along x.
 SpringNetwork chain(Index n, double m, double k) {
   SpringNetwork net;
@@ -269,11 +258,7 @@ int main(int argc, char** argv) {
     workPrecisionChart(options, written, table);
     groundChart(options, written, table);
     clothAnimation(options, written);
-    std::cout << "\nLab 2 charts:\n";
-    for (const auto& p : written) std::cout << "  " << p << "\n";
-    std::cout << "\nLab 2 summary:\n";
-    table.print(std::cout);
-    table.saveMarkdown(options.out + "/lab02_summary.md");
+    reportDemo("Lab 2", written, table, options.out + "/lab02_summary.md");
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "demo_02_springs: " << e.what() << "\n";

@@ -14,16 +14,6 @@ using namespace physlab;
 
 namespace {
 
-bool attempt(const std::string& what, const std::function<void()>& work) {
-  try {
-    work();
-    return true;
-  } catch (const std::exception& e) {
-    std::cout << "  " << what << ": skipped (" << e.what() << ")\n";
-    return false;
-  }
-}
-
 const Mat3 kInertia = Vec3(1.0, 2.0, 3.0).asDiagonal();
 const Vec3 kOmega0(0.4, 1.0, 0.6);  // body frame, a generic tumble
 
@@ -211,11 +201,7 @@ int main(int argc, char** argv) {
     dzhanibekovChart(options, written);
     workPrecisionChart(options, written);
     tumblingBox(options, written);
-    std::cout << "\nLab 3 charts:\n";
-    for (const auto& p : written) std::cout << "  " << p << "\n";
-    std::cout << "\nLab 3 summary (torque-free body, h = 0.01):\n";
-    table.print(std::cout);
-    table.saveMarkdown(options.out + "/lab03_summary.md");
+    reportDemo("Lab 3", written, table, options.out + "/lab03_summary.md");
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "demo_03_rigid_bodies: " << e.what() << "\n";

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -53,6 +54,15 @@ class Table {
   std::vector<std::string> header_;
   std::vector<std::vector<std::string>> rows_;
 };
+
+/// Runs `work`. If it throws (a stub not yet written, a method that broke down), prints `what`
+/// and the reason and returns false, so that one failure costs a demo one line, not every chart.
+bool attempt(const std::string& what, const std::function<void()>& work);
+
+/// Prints the paths a demo wrote and its summary table, and saves the table as Markdown at
+/// `summary_path`.
+void reportDemo(const std::string& lab, const std::vector<std::string>& written, const Table& table,
+                const std::string& summary_path);
 
 /// Formats a number in `%.*g` style with `digits` significant digits.
 std::string fmt(double value, int digits = 3);
