@@ -73,8 +73,7 @@ TEST_CASE("forces: uniform gravity is m g and minus the gradient of its potentia
   CHECK(relative(minusGradient(gravity, c), expected) < 1e-8);
 }
 
-TEST_CASE("forces: N-body gravity matches Newton's law and minus the gradient of its potential",
-          "[lab01][pts=2]") {
+TEST_CASE("forces: N-body gravity matches Newton's law and minus the gradient of its potential", "[lab01][pts=2]") {
   const Cloud c = randomCloud(6, 2.0, 0.3);
   const double G = uniform(0.5, 2.0), soft = uniform(0.0, 0.1);
   const NBodyGravity gravity(G, soft);
@@ -105,8 +104,7 @@ TEST_CASE("forces: viscous drag is -d v and stores no energy", "[lab01][pts=1]")
   CHECK(dF_dx.norm() == 0.0);
 }
 
-TEST_CASE("forces: damped spring follows the lecture's formula and its potential",
-          "[lab01][pts=2]") {
+TEST_CASE("forces: damped spring follows the lecture's formula and its potential", "[lab01][pts=2]") {
   const Cloud c = randomCloud(3, 1.0, 0.2);
   const double rest = uniform(0.1, 1.0), ks = uniform(1.0, 100.0), kd = uniform(0.0, 5.0);
   const DampedSpring spring(2, 0, rest, ks, kd);
@@ -148,8 +146,7 @@ TEST_CASE("forces: damped spring Jacobians match central differences", "[lab01][
   CHECK((dF_dv - fd_v).norm() < 1e-6 * fd_v.norm());
 }
 
-TEST_CASE("forces: Lennard-Jones matches its formula and minus the gradient of its potential",
-          "[lab01][pts=2]") {
+TEST_CASE("forces: Lennard-Jones matches its formula and minus the gradient of its potential", "[lab01][pts=2]") {
   const double sigma = uniform(0.5, 1.0), eps_lj = uniform(0.5, 2.0);
   const Cloud c = randomCloud(5, 1.5, 0.9 * sigma);
   const LennardJones lj(eps_lj, sigma);

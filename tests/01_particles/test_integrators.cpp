@@ -99,8 +99,7 @@ double stabilityBoundary(Method method) {
 
 }  // namespace
 
-TEST_CASE("oscillator: explicit Euler's energy grows by exactly 1+(h omega)^2 per step",
-          "[lab01][pts=2]") {
+TEST_CASE("oscillator: explicit Euler's energy grows by exactly 1+(h omega)^2 per step", "[lab01][pts=2]") {
   const double hw = uniform(0.01, 0.5);
   for (double ratio : energyRatios(Method::ExplicitEuler, hw, 50)) {
     // Exact algebra: only round-off (1e-15 per step) separates the ratio from 1+(h omega)^2.
@@ -108,8 +107,7 @@ TEST_CASE("oscillator: explicit Euler's energy grows by exactly 1+(h omega)^2 pe
   }
 }
 
-TEST_CASE("oscillator: implicit Euler's energy decays by exactly 1/(1+(h omega)^2) per step",
-          "[lab01][pts=2]") {
+TEST_CASE("oscillator: implicit Euler's energy decays by exactly 1/(1+(h omega)^2) per step", "[lab01][pts=2]") {
   const double hw = uniform(0.01, 0.5);
   for (double ratio : energyRatios(Method::ImplicitEuler, hw, 50)) {
     // Newton converges to 1e-12 relative on this linear system, so the ratio is exact to ~1e-11.
@@ -117,8 +115,7 @@ TEST_CASE("oscillator: implicit Euler's energy decays by exactly 1/(1+(h omega)^
   }
 }
 
-TEST_CASE("oscillator: symplectic Euler keeps the energy bounded over 10^4 steps",
-          "[lab01][pts=2]") {
+TEST_CASE("oscillator: symplectic Euler keeps the energy bounded over 10^4 steps", "[lab01][pts=2]") {
   const double hw = uniform(0.05, 0.5);
   const double error = maxEnergyError(Method::SymplecticEuler, hw, 10000);
   INFO("h omega = " << hw << ", largest relative energy error " << error);

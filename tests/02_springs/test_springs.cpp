@@ -140,8 +140,7 @@ TEST_CASE("springs: internal forces conserve the momentum of a free network", "[
   CHECK((momentum(X) - P0).norm() < 1e-12 * net.masses.sum());
 }
 
-TEST_CASE("springs: each spring of a hanging chain stretches by the weight below it over k",
-          "[lab02][pts=2]") {
+TEST_CASE("springs: each spring of a hanging chain stretches by the weight below it over k", "[lab02][pts=2]") {
   const Index n = 6;
   const double k = uniform(50.0, 200.0), m = uniform(0.05, 0.2), g = 9.81;
   SpringNetwork net = makeRope(n, 1.0, m * (n - 1), k, 0.0);

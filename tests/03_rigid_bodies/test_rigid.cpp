@@ -178,8 +178,7 @@ TEST_CASE("rigid: an axisymmetric top precesses at (I3 - I1) / I1 omega3 in the 
   CHECK(w.z() == Approx(w0.z()).epsilon(1e-12));
 }
 
-TEST_CASE("rigid: the intermediate axis flips near the analytic time while the others stay stable",
-          "[lab03][pts=3]") {
+TEST_CASE("rigid: the intermediate axis flips near the analytic time while the others stay stable", "[lab03][pts=3]") {
   const RigidBodySystem sys(RigidBody(1.0, diag(1, 2, 3)));
   const Vec3 w0(1e-3, 1.0, 0.0);
   const double t_flip = oracleFlipTime(diag(1, 2, 3), w0, 1e-4);
@@ -253,8 +252,7 @@ TEST_CASE("rigid: the exponential map rotates by exactly |omega| h", "[lab03][pt
   CHECK((q * Vec3::UnitX()).isApprox(Vec3(std::cos(1.0), std::sin(1.0), 0.0), 1e-14));
 }
 
-TEST_CASE("rigid: two explicit Euler steps of a box pushed off-centre match the hand computation",
-          "[lab03][pts=2]") {
+TEST_CASE("rigid: two explicit Euler steps of a box pushed off-centre match the hand computation", "[lab03][pts=2]") {
   // Box M = 2, edges (1, 2, 3): I_body = 2/12 diag(13, 10, 5). Force (0, 0, 1) N at body point
   // (0.5, 0, 0), at rest at the origin, h = 0.1.
   // Step 1: P = (0, 0, 0.1), L = h (r x F) = 0.1 (0, -0.5, 0) = (0, -0.05, 0); x and q unchanged

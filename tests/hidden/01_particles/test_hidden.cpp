@@ -7,8 +7,7 @@
 using namespace physlab;
 using namespace physlab::test;
 
-TEST_CASE("hidden: RK4 on the oscillator equals its stability polynomial applied N times",
-          "[lab01][pts=2][hidden]") {
+TEST_CASE("hidden: RK4 on the oscillator equals its stability polynomial applied N times", "[lab01][pts=2][hidden]") {
   const HarmonicOscillator osc(uniform(0.5, 2.0));
   const double z = uniform(0.05, 0.5);  // h omega
   const long steps = 1 + static_cast<long>(uniform(10.0, 200.0));

@@ -5,8 +5,7 @@
 using namespace physlab;
 using namespace physlab::test;
 
-TEST_CASE("hidden: a damped hanging rope settles where each spring carries the weight below it",
-          "[lab02][pts=2][hidden]") {
+TEST_CASE("hidden: a damped hanging rope settles where each spring carries the weight below it", "[lab02][pts=2][hidden]") {
   const Index n = 8;
   const double k = uniform(200.0, 2000.0), m = uniform(0.05, 0.2), g = 9.81;
   SpringNetwork net = makeRope(n, 1.0, m * (n - 1), k, 2.0);
