@@ -283,7 +283,9 @@ def cmd_run(args) -> int:
         passed, failed = summary_line(results)
         print(f"\n{passed} passed, {failed} failed")
     if args.summary:
-        Path(args.summary).write_text(f"{passed} {failed}\n")
+        graded = [t for r in results for t in r.tests if t.graded]
+        graded_passed = sum(t.passed for t in graded)
+        Path(args.summary).write_text(f"{passed} {failed} {len(graded)} {graded_passed}\n")
     return 0 if failed == 0 else 1
 
 
