@@ -47,3 +47,18 @@ function(physlab_link_bullet target)
     message(STATUS "${target}: comparing with Bullet (bullet-float64)")
   endif()
 endfunction()
+
+# Optional peer for benchmarks: MuJoCo (libmujoco-dev). Links it into `target` with
+# PHYSLAB_HAVE_MUJOCO defined when its header and library are found. Debian's mujocoConfig.cmake
+# (2.2.2) names a missing include folder (/usr/include/libqhull_r), which makes configuration
+# fail, so the header and library are looked up directly instead.
+function(physlab_link_mujoco target)
+  find_path(PHYSLAB_MUJOCO_INCLUDE_DIR mujoco/mujoco.h)
+  find_library(PHYSLAB_MUJOCO_LIBRARY mujoco)
+  if(PHYSLAB_MUJOCO_INCLUDE_DIR AND PHYSLAB_MUJOCO_LIBRARY)
+    target_include_directories(${target} SYSTEM PRIVATE "${PHYSLAB_MUJOCO_INCLUDE_DIR}")
+    target_link_libraries(${target} PRIVATE "${PHYSLAB_MUJOCO_LIBRARY}")
+    target_compile_definitions(${target} PRIVATE PHYSLAB_HAVE_MUJOCO)
+    message(STATUS "${target}: comparing with MuJoCo (${PHYSLAB_MUJOCO_LIBRARY})")
+  endif()
+endfunction()

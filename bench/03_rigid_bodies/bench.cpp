@@ -9,6 +9,14 @@
 #include "physlab/integrators.hpp"
 #include "physlab/rigid.hpp"
 
+#ifdef PHYSLAB_HAVE_MUJOCO
+#include <mujoco/mujoco.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#endif
+
 #ifdef PHYSLAB_HAVE_BULLET
 #include <btBulletDynamicsCommon.h>
 
@@ -111,6 +119,62 @@ double bulletPerBodyStep(int count, int sweeps) {
 }
 #endif
 
+#ifdef PHYSLAB_HAVE_MUJOCO
+// A MuJoCo model of `count` free bodies with inertia diag(1, 2, 3), no geoms (so no contacts),
+// no gravity, step 1/60 s and the named integrator ("Euler" or "RK4").
+struct MujocoRun {
+  mjModel* model = nullptr;
+  mjData* data = nullptr;
+  MujocoRun(int count, const std::string& integrator) {
+    std::ostringstream xml;
+    xml << "<mujoco><option timestep='" << kStep << "' gravity='0 0 0' integrator='" << integrator
+        << "'/><worldbody>";
+    for (int i = 0; i < count; ++i) {
+      xml << "<body pos='" << 10 * i << " 0 0'><freejoint/><inertial pos='0 0 0' mass='1' diaginertia='1 2 3'/></body>";
+    }
+    xml << "</worldbody></mujoco>";
+    const std::string path = "/tmp/physlab_bench_mujoco_" + std::to_string(count) + ".xml";
+    std::ofstream(path) << xml.str();
+    char error[1000] = "";
+    model = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
+    std::remove(path.c_str());
+    if (!model) throw std::runtime_error(std::string("MuJoCo could not load its model: ") + error);
+    data = mj_makeData(model);
+  }
+  ~MujocoRun() {
+    mj_deleteData(data);
+    mj_deleteModel(model);
+  }
+  // A free joint's angular velocity (qvel 3..5 of each body) is in the body's local frame.
+  double energy(int body) const {
+    const mjtNum* w = data->qvel + 6 * body + 3;
+    return 0.5 * (1.0 * w[0] * w[0] + 2.0 * w[1] * w[1] + 3.0 * w[2] * w[2]);
+  }
+};
+
+double mujocoDrift(const std::string& integrator) {
+  MujocoRun run(1, integrator);
+  run.data->qvel[3] = kOmega0.x();
+  run.data->qvel[4] = kOmega0.y();
+  run.data->qvel[5] = kOmega0.z();
+  const double E0 = run.energy(0);
+  for (int n = 0; n < kSteps; ++n) mj_step(run.model, run.data);
+  return std::abs(run.energy(0) - E0) / E0;
+}
+
+double mujocoPerBodyStep(int count, int sweeps) {
+  MujocoRun run(count, "RK4");
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal;
+  for (int i = 0; i < count; ++i) {
+    for (int k = 3; k < 6; ++k) run.data->qvel[6 * i + k] = normal(rng);
+  }
+  Stopwatch clock;
+  for (int s = 0; s < sweeps; ++s) mj_step(run.model, run.data);
+  return clock.seconds() / (static_cast<double>(sweeps) * count);
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,6 +200,14 @@ int main(int argc, char** argv) {
     std::cout << "cost per body-step, PhysLab RK4 / Bullet default: " << fmt(ours_rk4_cost / bullet_cost) << "\n";
 #else
     table.add({"Bullet", "not installed", "-", "-"});
+#endif
+#ifdef PHYSLAB_HAVE_MUJOCO
+    const double mujoco_cost = mujocoPerBodyStep(options.quick ? 1000 : count, sweeps);
+    table.add({"MuJoCo " + std::string(mj_versionString()), "RK4", fmt(1.0 / mujoco_cost), fmt(mujocoDrift("RK4"))});
+    table.add({"MuJoCo " + std::string(mj_versionString()), "Euler (default)", "-", fmt(mujocoDrift("Euler"))});
+    std::cout << "cost per body-step, PhysLab RK4 / MuJoCo RK4: " << fmt(ours_rk4_cost / mujoco_cost) << "\n";
+#else
+    table.add({"MuJoCo", "not installed", "-", "-"});
 #endif
     std::cout << "Lab 3 benchmark: " << count << " free bodies, I = diag(1, 2, 3), h = 1/60 s\n";
     table.print(std::cout);

@@ -1,2 +1,3 @@
-# Optional peer for bench_03_rigid_bodies: Bullet's rigid bodies and gyroscopic modes.
+# Optional peers for bench_03_rigid_bodies: Bullet's gyroscopic modes and MuJoCo's integrators.
 physlab_link_bullet(${PHYSLAB_BENCH_TARGET})
+physlab_link_mujoco(${PHYSLAB_BENCH_TARGET})
