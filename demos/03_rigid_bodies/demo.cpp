@@ -1,5 +1,6 @@
 // Lab 3 demo: how orientation representations and integrators drift, the Dzhanibekov flip,
 // cost against accuracy for a torque-free body, and a tumbling box with its fixed L.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -17,7 +18,15 @@ namespace {
 const Mat3 kInertia = Vec3(1.0, 2.0, 3.0).asDiagonal();
 const Vec3 kOmega0(0.4, 1.0, 0.6);  // body frame, a generic tumble
 
-// Relative energy drift over time for the quaternion form and both matrix forms.
+// Relative drift of the body-frame angular momentum magnitude |R^T L| from |L_0|. World L is
+// constant exactly (Ldot = 0 in the momentum form), so all its drift comes from R leaving the
+// rotations. Exact zeros are lifted to 1e-17 so that they stay visible on the log axis.
+double momentumDrift(const Mat3& R, const Vec3& L, double L0) {
+  return std::max(std::abs((R.transpose() * L).norm() - L0) / L0, 1e-17);
+}
+
+// Relative energy and angular momentum drift over time for the quaternion form and both matrix
+// forms.
 void driftCharts(const DemoOptions& options, std::vector<std::string>& written, Table& table) {
   const RigidBody body(1.0, kInertia);
   const double h = 0.01, T = options.quick ? 10.0 : 60.0;
@@ -25,8 +34,11 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
   Chart energy("Torque-free body, h = 0.01: kinetic energy drift", "time [s]", "|E - E_0| / E_0");
   Chart constraint("Torque-free body, h = 0.01: drift off the rotation group (no correction)",
                    "time [s]", "| |q| - 1 |   or   |R^T R - 1|");
+  Chart momentum("Torque-free body, h = 0.01: body-frame angular momentum drift", "time [s]",
+                 "| |R^T L| - |L_0| | / |L_0|");
   energy.logY();
   constraint.logY();
+  momentum.logY();
   for (Method method : {Method::ExplicitEuler, Method::SymplecticEuler, Method::RK4}) {
     const std::string m = methodName(method);
     attempt(m + " (quaternion)", [&] {
@@ -34,8 +46,9 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
       for (bool renormalize : {true, false}) {
         sys.setRenormalize(renormalize);
         VecX X = sys.makeState(Vec3::Zero(), Quat::Identity(), Vec3::Zero(), kInertia * kOmega0);
-        const double E0 = sys.kineticEnergy(X);
-        Series e{m + ", quaternion", {}, {}, "lines"}, c{m + ", |q| - 1", {}, {}, "lines"};
+        const double E0 = sys.kineticEnergy(X), L0 = X.segment<3>(10).norm();
+        Series e{m + ", quaternion", {}, {}, "lines"}, c{m + ", |q| - 1", {}, {}, "lines"},
+            l{m + ", quaternion", {}, {}, "lines"};
         Integrator integrator(method);
         for (long n = 1; n <= steps; ++n) {
           integrator.step(sys, X, h);
@@ -44,11 +57,14 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
             e.y.push_back(std::abs(sys.kineticEnergy(X) - E0) / E0);
             c.x.push_back(n * h);
             c.y.push_back(std::abs(orientationOf(X).norm() - 1.0));
+            l.x.push_back(n * h);
+            l.y.push_back(momentumDrift(orientationOf(X).toRotationMatrix(), X.segment<3>(10), L0));
           }
         }
         if (renormalize) {
-          table.add({m, "quaternion, renormalised", fmt(e.y.back())});
+          table.add({m, "quaternion, renormalised", fmt(e.y.back()), fmt(l.y.back())});
           energy.add(e);
+          momentum.add(l);
         } else {
           constraint.add(c);
         }
@@ -59,8 +75,9 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
       attempt(m + " (" + form + ")", [&] {
         const RotationMatrixSystem sys(body, gs);
         VecX X = sys.makeState(Vec3::Zero(), Quat::Identity(), Vec3::Zero(), kInertia * kOmega0);
-        const double E0 = sys.kineticEnergy(X);
-        Series e{m + ", " + form, {}, {}, "lines"}, c{m + ", |R^T R - 1|", {}, {}, "lines"};
+        const double E0 = sys.kineticEnergy(X), L0 = X.segment<3>(15).norm();
+        Series e{m + ", " + form, {}, {}, "lines"}, c{m + ", |R^T R - 1|", {}, {}, "lines"},
+            l{m + ", " + form, {}, {}, "lines"};
         Integrator integrator(method);
         for (long n = 1; n <= steps; ++n) {
           integrator.step(sys, X, h);
@@ -69,16 +86,20 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
             e.y.push_back(std::abs(sys.kineticEnergy(X) - E0) / E0);
             c.x.push_back(n * h);
             c.y.push_back(sys.orthonormalityError(X));
+            l.x.push_back(n * h);
+            l.y.push_back(momentumDrift(Eigen::Map<const Mat3>(X.data() + 3), X.segment<3>(15), L0));
           }
         }
-        table.add({m, form, fmt(e.y.back())});
+        table.add({m, form, fmt(e.y.back()), fmt(l.y.back())});
         energy.add(e);
+        momentum.add(l);
         if (!gs) constraint.add(c);
       });
     }
   }
   for (const auto& p : energy.save(options.out + "/lab03_energy_drift")) written.push_back(p);
   for (const auto& p : constraint.save(options.out + "/lab03_constraint_drift")) written.push_back(p);
+  for (const auto& p : momentum.save(options.out + "/lab03_momentum_drift")) written.push_back(p);
 }
 
 // Body-frame omega = I_body^-1 R^T L of a quaternion state.
@@ -196,7 +217,7 @@ int main(int argc, char** argv) {
     const DemoOptions options = parseDemoOptions(
         argc, argv, "Lab 3 demo: orientation drift, the Dzhanibekov flip, work-precision, a tumbling box.");
     std::vector<std::string> written;
-    Table table({"integrator", "orientation", "final |E - E0| / E0"});
+    Table table({"integrator", "orientation", "final |E - E0| / E0", "final | |R^T L| - |L0| | / |L0|"});
     driftCharts(options, written, table);
     dzhanibekovChart(options, written);
     workPrecisionChart(options, written);

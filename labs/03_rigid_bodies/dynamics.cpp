@@ -14,7 +14,7 @@ Vec3 angularVelocity(const RigidBody& body, const Quat& q, const Vec3& L) {
 
 Wrench wrenchAbout(const Vec3& x, const std::vector<AppliedForce>& forces) {
   // Sum the forces and their moments (p - x) x F about x
-  // TODO(student): loop over forces: w.force += F; w.torque += (p - x).cross(F).
+  // TODO(student): each entry is (F, p): add F to the force and (p - x).cross(F) to the torque; return {F, tau}.
   notImplemented("wrenchAbout", "Lab 3 handout, section 3", x, forces);
 }
 

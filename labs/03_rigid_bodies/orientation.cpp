@@ -25,10 +25,20 @@ Mat3 gramSchmidt(const Mat3& R) {
   notImplemented("gramSchmidt", "Lab 3 handout, section 6", R);
 }
 
-Vec3 bodyOmegaRate(const Mat3& inertia_body, const Vec3& omega_body, const Vec3& torque_body) {
+Mat3 rotationMatrixStep(const Mat3& R, const Vec3& omega, double h, bool orthonormalize) {
+  // Build the cross-product matrix omega*, so that omega* a = omega x a
+  // TODO(student): rows (0, -wz, wy), (wz, 0, -wx), (-wy, wx, 0).
+  // Take the explicit Euler step R + h omega* R
+  // TODO(student): store it in a Mat3, not in auto (an Eigen expression).
+  // Pull the result back onto the rotations when asked
+  // TODO(student): return gramSchmidt(next) when orthonormalize, next otherwise.
+  notImplemented("rotationMatrixStep", "Lab 3 handout, section 6", R, omega, h, orthonormalize);
+}
+
+Vec3 bodyFrameOmegaRate(const Mat3& I_body, const Vec3& omega_body, const Vec3& torque_body) {
   // Subtract the gyroscopic term omega x I omega from the torque and divide by I
   // TODO(student): solve I wdot = tau - omega x (I omega), e.g. with I.ldlt().solve(...).
-  notImplemented("bodyOmegaRate", "Lab 3 handout, section 7", inertia_body, omega_body, torque_body);
+  notImplemented("bodyFrameOmegaRate", "Lab 3 handout, section 7", I_body, omega_body, torque_body);
 }
 
 }  // namespace physlab

@@ -27,9 +27,19 @@ Mat3 gramSchmidt(const Mat3& R) {
   return Q;
 }
 
-Vec3 bodyOmegaRate(const Mat3& inertia_body, const Vec3& omega_body, const Vec3& torque_body) {
+Mat3 rotationMatrixStep(const Mat3& R, const Vec3& omega, double h, bool orthonormalize) {
+  // Build the cross-product matrix omega*, so that omega* a = omega x a
+  Mat3 omega_star;
+  omega_star << 0.0, -omega.z(), omega.y(), omega.z(), 0.0, -omega.x(), -omega.y(), omega.x(), 0.0;
+  // Take the explicit Euler step R + h omega* R
+  const Mat3 next = R + h * omega_star * R;
+  // Pull the result back onto the rotations when asked
+  return orthonormalize ? gramSchmidt(next) : next;
+}
+
+Vec3 bodyFrameOmegaRate(const Mat3& I_body, const Vec3& omega_body, const Vec3& torque_body) {
   // Subtract the gyroscopic term omega x I omega from the torque and divide by I
-  return inertia_body.ldlt().solve(torque_body - omega_body.cross(inertia_body * omega_body));
+  return I_body.ldlt().solve(torque_body - omega_body.cross(I_body * omega_body));
 }
 
 }  // namespace physlab

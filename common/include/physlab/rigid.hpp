@@ -23,6 +23,8 @@ namespace physlab {
 struct RigidBody {
   /// Throws InvalidInput for a mass that is not positive and finite, or an inertia tensor that
   /// is not symmetric positive definite (naming which).
+  /// \param mass M [kg]
+  /// \param inertia_body \f$I_{body}\f$, body frame, about the centre of mass [kg m^2]
   RigidBody(double mass, const Mat3& inertia_body);
   double mass;            ///< M [kg]
   Mat3 inertia_body;      ///< \f$I_{body}\f$, body frame, about the centre of mass [kg m^2]
@@ -66,7 +68,9 @@ Mat3 cylinderInertia(double M, double radius, double height);
 Mat3 pointMassInertia(const VecX& m, const Mat3X& r);
 /// World angular velocity \f$\omega = R\, I_{body}^{-1} R^T L\f$ [rad/s]. Handout: Lab 3, section 2.
 Vec3 angularVelocity(const RigidBody& body, const Quat& q, const Vec3& L);
-/// Total force and torque about `x` of forces at world points. Handout: Lab 3, section 3.
+/// Total force and torque about the world point `x` (the centre of mass) of forces at world
+/// points: \f$F = \sum_i F_i\f$, \f$\tau = \sum_i (p_i - x) \times F_i\f$, world frame.
+/// Handout: Lab 3, section 3.
 Wrench wrenchAbout(const Vec3& x, const std::vector<AppliedForce>& forces);
 /// Velocity of the world point `p` of a body moving with `v` and `omega` about its centre `x`:
 /// \f$v + \omega \times (p - x)\f$ [m/s]. Handout: Lab 3, section 3.
@@ -78,9 +82,14 @@ Quat exponentialUpdate(const Quat& q, const Vec3& omega, double h);
 /// Gram-Schmidt re-orthonormalisation of the columns of `R` (first column normalised, second made
 /// orthogonal to it and normalised, third the cross product). Handout: Lab 3, section 6.
 Mat3 gramSchmidt(const Mat3& R);
+/// One explicit Euler step of the matrix form \f$\dot R = \omega^* R\f$ for a constant world-frame
+/// \f$\omega\f$ [rad/s]: \f$R_{n+1} = R_n + h\,\omega^* R_n\f$, with \f$\omega^*\f$ the cross-product
+/// matrix (\f$\omega^* a = \omega \times a\f$), followed by gramSchmidt() when `orthonormalize`.
+/// Handout: Lab 3, section 6.
+Mat3 rotationMatrixStep(const Mat3& R, const Vec3& omega, double h, bool orthonormalize);
 /// Euler's equations in the body frame: \f$\dot\omega = I^{-1}(\tau - \omega \times I\omega)\f$ with
 /// \f$I = I_{body}\f$, \f$\omega\f$ and \f$\tau\f$ in body coordinates [rad/s^2]. Handout: Lab 3, section 7.
-Vec3 bodyOmegaRate(const Mat3& inertia_body, const Vec3& omega_body, const Vec3& torque_body);
+Vec3 bodyFrameOmegaRate(const Mat3& I_body, const Vec3& omega_body, const Vec3& torque_body);
 ///@}
 
 /// One rigid body under constant body-fixed forces and uniform gravity, as a System.
@@ -90,12 +99,17 @@ class RigidBodySystem final : public System {
   /// \param forces forces fixed in the body (may be empty)
   /// \param gravity uniform gravitational acceleration, world frame [m/s^2]
   RigidBodySystem(RigidBody body, std::vector<BodyForce> forces = {}, Vec3 gravity = Vec3::Zero());
+  /// 7: \f$x\f$ and \f$q = (q_w, q_x, q_y, q_z)\f$.
   Index positionSize() const override { return 7; }
+  /// 6: \f$P\f$ and \f$L\f$.
   Index velocitySize() const override { return 6; }
+  /// "rigid body".
   std::string name() const override { return "rigid body"; }
   const RigidBody& body() const { return body_; }  ///< the description
   /// Turns quaternion renormalisation after each step on (default) or off.
   void setRenormalize(bool on) { renormalize_ = on; }
+  /// Whether project() renormalises q.
+  bool renormalize() const { return renormalize_; }
   /// Renormalises q when renormalisation is on.
   void project(VecX& X) const override;
   /// Packs a state; throws InvalidInput for a zero or non-finite quaternion or non-finite vectors.
@@ -127,8 +141,11 @@ class RotationMatrixSystem final : public System {
  public:
   /// \param body mass and inertia; \param orthonormalize apply Gram-Schmidt after each step
   RotationMatrixSystem(RigidBody body, bool orthonormalize);
+  /// 12: \f$x\f$ and the 9 entries of \f$R\f$.
   Index positionSize() const override { return 12; }
+  /// 6: \f$P\f$ and \f$L\f$.
   Index velocitySize() const override { return 6; }
+  /// "rigid body (rotation matrix)".
   std::string name() const override { return "rigid body (rotation matrix)"; }
   /// Applies gramSchmidt() to R when enabled.
   void project(VecX& X) const override;
