@@ -41,13 +41,23 @@ double analyticFlipTime(const Vec3& I, const Vec3& w) {
 
 }  // namespace
 
-TEST_CASE("inertia: box sphere and cylinder match their closed forms", "[lab03][pts=2]") {
+TEST_CASE("inertia: a solid box matches its closed-form tensor", "[lab03][pts=1]") {
   const double M = uniform(0.5, 5.0), a = uniform(0.1, 2.0), b = uniform(0.1, 2.0), c = uniform(0.1, 2.0);
-  // Each closed form evaluated here in another order: round-off only.
+  // The closed form evaluated here in another order: round-off only.
   CHECK(boxInertia(M, Vec3(a, b, c)).isApprox(diag(b * b + c * c, a * a + c * c, a * a + b * b) * M / 12, 1e-14));
-  CHECK(sphereInertia(M, a).isApprox(Mat3::Identity() * 2.0 / 5.0 * M * a * a, 1e-14));
-  const double across = M * (3 * a * a + b * b) / 12;
-  CHECK(cylinderInertia(M, a, b).isApprox(diag(across, across, M * a * a / 2), 1e-14));
+}
+
+TEST_CASE("inertia: a solid sphere matches 2/5 M r^2 on every axis", "[lab03][pts=1]") {
+  const double M = uniform(0.5, 5.0), r = uniform(0.1, 2.0);
+  // The closed form evaluated here in another order: round-off only.
+  CHECK(sphereInertia(M, r).isApprox(Mat3::Identity() * 2.0 / 5.0 * M * r * r, 1e-14));
+}
+
+TEST_CASE("inertia: a solid cylinder matches its closed-form tensor", "[lab03][pts=1]") {
+  const double M = uniform(0.5, 5.0), r = uniform(0.1, 2.0), height = uniform(0.1, 2.0);
+  const double across = M * (3 * r * r + height * height) / 12;
+  // The closed form evaluated here in another order: round-off only.
+  CHECK(cylinderInertia(M, r, height).isApprox(diag(across, across, M * r * r / 2), 1e-14));
 }
 
 TEST_CASE("inertia: point masses sampling a box converge to the box's tensor", "[lab03][pts=2]") {
@@ -97,12 +107,55 @@ TEST_CASE("forces: a body point moves with v + omega x (p - x)", "[lab03][pts=1]
 }
 
 TEST_CASE("rigid: angular velocity is R I_body^-1 R^T L", "[lab03][pts=1]") {
-  const RigidBody body(uniform(1.0, 3.0), boxInertia(1.0, Vec3(1.0, 2.0, 3.0)) + 0.1 * Mat3::Identity());
+  // A full body tensor (principal axes turned by B), so that using only its diagonal fails.
+  const Mat3 B = randomRotation();
+  const RigidBody body(uniform(1.0, 3.0), B * diag(uniform(0.5, 1.0), uniform(1.5, 2.0), uniform(2.5, 3.0)) * B.transpose());
   const Mat3 R = randomRotation();
   const Vec3 L = randomVec3(2.0);
   // omega must satisfy I_world omega = L, with I_world = R I_body R^T.
   const Vec3 omega = angularVelocity(body, Quat(R), L);
+  // I_body's condition number is at most 6: the products and the inverse lose ~1e-15.
   CHECK((R * body.inertia_body * R.transpose() * omega).isApprox(L, 1e-12));
+}
+
+TEST_CASE("rigid: the position rate is xdot = P / M and qdot = 1/2 omega q", "[lab03][pts=1]") {
+  const RigidBodySystem sys(RigidBody(uniform(0.5, 3.0), diag(uniform(0.5, 1.0), uniform(1.5, 2.0), uniform(2.5, 3.0))));
+  const VecX X = sys.makeState(randomVec3(1.0), Quat(randomRotation()), randomVec3(2.0), randomVec3(2.0));
+  VecX qdot(7);
+  sys.positionRate(X, qdot);
+  // The oracle: omega = R I_body^-1 R^T L, and the quaternion product (0, omega) q written out.
+  const Quat q = orientationOf(X);
+  const Mat3 R = q.toRotationMatrix();
+  const Vec3 w = R * sys.body().inertia_body_inv * R.transpose() * X.segment<3>(10);
+  const Vec3 u = q.vec();
+  const double rate_w = -0.5 * w.dot(u);
+  const Vec3 rate_u = 0.5 * (q.w() * w + w.cross(u));
+  VecX expected(7);
+  expected << X.segment<3>(7) / sys.body().mass, rate_w, rate_u;
+  CHECK(qdot.isApprox(expected, 1e-13));  // the same products in another order: round-off only
+  // A unit quaternion's rate is tangent to the unit sphere: q . qdot = 0.
+  CHECK(std::abs(X.segment<4>(3).dot(qdot.tail<4>())) < 1e-14 * qdot.norm());
+}
+
+TEST_CASE("rigid: the velocity rate is the total force and the torque about the centre", "[lab03][pts=1]") {
+  std::vector<BodyForce> forces;
+  for (int i = 0; i < 3; ++i) forces.push_back({randomVec3(1.0), randomVec3(5.0)});
+  const Vec3 g = randomVec3(10.0);
+  const RigidBodySystem sys(RigidBody(uniform(0.5, 3.0), diag(1, 2, 3)), forces, g);
+  const VecX X = sys.makeState(randomVec3(1.0), Quat(randomRotation()), randomVec3(2.0), randomVec3(2.0));
+  VecX pdot(6);
+  sys.velocityRate(X, pdot);
+  // The oracle: each force acts at x + R r_body, so its moment about x is (R r_body) x F;
+  // gravity acts at x and adds M g to the force only.
+  const Mat3 R = orientationOf(X).toRotationMatrix();
+  Vec3 F = sys.body().mass * g, tau = Vec3::Zero();
+  for (const BodyForce& f : forces) {
+    F += f.force_world;
+    tau += (R * f.point_body).cross(f.force_world);
+  }
+  // Sums of a few O(10) terms; the moment arms pass through x + R r - x: ~1e-15 relative.
+  CHECK(pdot.head<3>().isApprox(F, 1e-13));
+  CHECK(pdot.tail<3>().isApprox(tau, 1e-12));
 }
 
 TEST_CASE("rigid: a force through the centre of mass produces no rotation", "[lab03][pts=1]") {
@@ -121,12 +174,14 @@ TEST_CASE("rigid: a pure couple produces no translation", "[lab03][pts=1]") {
   const Vec3 x0 = randomVec3(1.0);
   const Quat q0(randomRotation());
   VecX X = sys.makeState(x0, q0, Vec3::Zero(), Vec3::Zero());
-  run(Method::RK4, sys, X, 0.01, 1);
-  // Yet the couple spins the body: L = h tau with tau = 2 (R r) x F, up to the O(h^2) turn of
-  // the force points within the first step.
+  const double h0 = 1e-3;
+  run(Method::RK4, sys, X, h0, 1);
+  // Yet the couple spins the body: L = h0 tau with tau = 2 (R r) x F. The force points turn by
+  // about |tau| h0^2 / 6 <= 5e-6 rad within the step (|tau| <= 30, I >= 1), so the relative
+  // error stays below 1e-5; 1e-3 leaves room for every seed.
   const Vec3 tau = 2.0 * (q0 * r).cross(F);
-  CHECK((X.segment<3>(10) - 0.01 * tau).norm() < 1e-3 * 0.01 * r.norm() * F.norm());
-  run(Method::RK4, sys, X, 0.01, 199);
+  CHECK((X.segment<3>(10) - h0 * tau).norm() < 1e-3 * h0 * r.norm() * F.norm());
+  run(Method::RK4, sys, X, 0.01, 200);
   // The forces cancel exactly, so P stays zero and x does not move.
   CHECK(X.segment<3>(7).norm() < 1e-14 * F.norm());
   CHECK((X.head<3>() - x0).norm() < 1e-14);
@@ -178,6 +233,7 @@ TEST_CASE("rigid: an axisymmetric top precesses at (I3 - I1) / I1 omega3 in the 
   const double expected = std::remainder(Omega * T, 2.0 * M_PI);
   // RK4 at h = 1e-3 is accurate to ~1e-12 rad here; a wrong sign or factor misses by O(1).
   CHECK(std::remainder(angle - expected, 2.0 * M_PI) == Approx(0.0).margin(1e-8));
+  // omega3's rate (I1 - I2) omega1 omega2 / I3 vanishes up to round-off when I1 = I2.
   CHECK(w.z() == Approx(w0.z()).epsilon(1e-12));
 }
 
@@ -223,27 +279,33 @@ TEST_CASE("rigid: renormalising keeps |q| = 1 while plain integration drifts", "
   sys.setRenormalize(true);
   X = X0;
   run(Method::ExplicitEuler, sys, X, 0.01, 500);
+  // renormalised after every step: |q| - 1 is one rounding, ~1e-16
   CHECK(std::abs(orientationOf(X).norm() - 1.0) < 1e-12);
 }
 
 TEST_CASE("rigid: Gram-Schmidt keeps a rotation matrix orthonormal", "[lab03][pts=2]") {
   const RigidBody body(1.0, diag(1, 2, 3));
   const Quat q0(randomRotation());
-  const Vec3 L = randomVec3(2.0);
-  double error[2];
+  // |L| in [1, 2], so that |omega| >= 1/3 and the uncorrected drift is well above its floor.
+  const Vec3 L = uniform(1.0, 2.0) * Vec3(randomRotation().col(0));
+  double error[2], det = 0.0;
   int k = 0;
   for (bool gs : {false, true}) {
     const RotationMatrixSystem sys(body, gs);
     VecX X = sys.makeState(Vec3::Zero(), q0, Vec3::Zero(), L);
     run(Method::ExplicitEuler, sys, X, 0.01, 500);
     error[k++] = sys.orthonormalityError(X);
+    det = Eigen::Map<const Mat3>(X.data() + 3).determinant();
   }
   INFO("|R^T R - 1| without Gram-Schmidt " << error[0] << ", with " << error[1]);
-  CHECK(error[0] > 1e-3);   // explicit Euler on Rdot = omega* R inflates R
+  // Explicit Euler on Rdot = omega* R inflates R by 1 + h^2 |omega|^2 / 2 >= 1 + 5e-6 per step:
+  // 500 steps give at least 5e-3.
+  CHECK(error[0] > 1e-3);
   CHECK(error[1] < 1e-13);  // re-orthonormalised after every step: round-off only
+  CHECK(det == Approx(1.0).epsilon(1e-13));  // a rotation, not a reflection; round-off only
 }
 
-TEST_CASE("rigid: an explicit Euler rotation-matrix step drifts off the rotations and Gram-Schmidt repairs it", "[lab03][pts=2]") {
+TEST_CASE("rigid: a plain rotation-matrix step is one explicit Euler step and drifts off the rotations", "[lab03][pts=1]") {
   const Mat3 R0 = randomRotation();
   const Vec3 omega = uniform(1.0, 2.0) * Vec3(randomRotation().col(0));  // |omega| in [1, 2]
   const double h = 0.01;
@@ -251,17 +313,23 @@ TEST_CASE("rigid: an explicit Euler rotation-matrix step drifts off the rotation
   omega_star << 0, -omega.z(), omega.y(), omega.z(), 0, -omega.x(), -omega.y(), omega.x(), 0;
   // One plain step is R + h omega* R exactly (a few roundings of O(1) numbers).
   CHECK(rotationMatrixStep(R0, omega, h, false).isApprox(R0 + h * omega_star * R0, 1e-14));
-  Mat3 plain = R0, repaired = R0;
-  for (int n = 0; n < 500; ++n) {
-    plain = rotationMatrixStep(plain, omega, h, false);
-    repaired = rotationMatrixStep(repaired, omega, h, true);
-  }
+  Mat3 plain = R0;
+  for (int n = 0; n < 500; ++n) plain = rotationMatrixStep(plain, omega, h, false);
   const double plain_error = (plain.transpose() * plain - Mat3::Identity()).norm();
-  const double repaired_error = (repaired.transpose() * repaired - Mat3::Identity()).norm();
-  INFO("|R^T R - 1| without Gram-Schmidt " << plain_error << ", with " << repaired_error);
+  INFO("|R^T R - 1| after 500 plain steps " << plain_error);
   // Each plain step multiplies squared lengths across omega by 1 + h^2 |omega|^2 >= 1 + 1e-4:
   // after 500 steps two diagonal entries of R^T R are off by 0.05 or more; 1e-2 is a safe floor.
   CHECK(plain_error > 1e-2);
+}
+
+TEST_CASE("rigid: the orthonormalising rotation-matrix step stays a rotation", "[lab03][pts=1]") {
+  const Mat3 R0 = randomRotation();
+  const Vec3 omega = uniform(1.0, 2.0) * Vec3(randomRotation().col(0));  // |omega| in [1, 2]
+  const double h = 0.01;
+  Mat3 repaired = R0;
+  for (int n = 0; n < 500; ++n) repaired = rotationMatrixStep(repaired, omega, h, true);
+  const double repaired_error = (repaired.transpose() * repaired - Mat3::Identity()).norm();
+  INFO("|R^T R - 1| after 500 orthonormalised steps " << repaired_error);
   CHECK(repaired_error < 1e-13);  // re-orthonormalised after every step: round-off only
   CHECK(repaired.determinant() == Approx(1.0).epsilon(1e-13));  // a rotation, not a reflection
 }
@@ -273,10 +341,12 @@ TEST_CASE("rigid: the exponential map rotates by exactly |omega| h", "[lab03][pt
   const Quat q1 = exponentialUpdate(q0, omega, h);
   // q1 q0^-1 is a rotation by |omega| h about omega (in the world frame).
   const Eigen::AngleAxisd turn(q1 * q0.conjugate());
+  // Exact up to round-off: a few roundings in the angle and in the axis, which loses digits
+  // only as the angle shrinks (axis error ~1e-16 / angle; the angle here is almost always > 1e-3).
   CHECK(turn.angle() == Approx(omega.norm() * h).epsilon(1e-12));
   CHECK(turn.axis().isApprox(omega.normalized(), 1e-10));
-  CHECK(q1.norm() == Approx(1.0).epsilon(1e-14));
-  // The lecture's check: 1 rad/s for 1 s about z turns x into (cos 1, sin 1, 0).
+  CHECK(q1.norm() == Approx(1.0).epsilon(1e-14));  // a product of unit quaternions: round-off
+  // The lecture's check: 1 rad/s for 1 s about z turns x into (cos 1, sin 1, 0); round-off only.
   const Quat q = exponentialUpdate(Quat::Identity(), Vec3(0, 0, 1), 1.0);
   CHECK((q * Vec3::UnitX()).isApprox(Vec3(std::cos(1.0), std::sin(1.0), 0.0), 1e-14));
 }

@@ -4,6 +4,7 @@
 #include "support.hpp"
 
 using namespace physlab;
+using namespace physlab::test;
 using Catch::Matchers::Contains;
 
 TEST_CASE("rigid validation: bad mass and inertia are refused", "[common]") {
@@ -23,6 +24,11 @@ TEST_CASE("rigid validation: zero and non-finite quaternions are refused", "[com
   CHECK_THROWS_WITH(sys.makeState(Vec3::Zero(), Quat(0, 0, 0, 0), Vec3::Zero(), Vec3::Zero()),
                     Contains("quaternion is zero"));
   CHECK_THROWS_WITH(sys.makeState(Vec3::Zero(), Quat(std::nan(""), 0, 0, 0), Vec3::Zero(), Vec3::Zero()),
+                    Contains("orientation quaternion has a non-finite entry"));
+  const RotationMatrixSystem matrix(RigidBody(1.0, Mat3::Identity()), true);
+  CHECK_THROWS_WITH(matrix.makeState(Vec3::Zero(), Quat(0, 0, 0, 0), Vec3::Zero(), Vec3::Zero()),
+                    Contains("quaternion is zero"));
+  CHECK_THROWS_WITH(matrix.makeState(Vec3::Zero(), Quat(1, std::nan(""), 0, 0), Vec3::Zero(), Vec3::Zero()),
                     Contains("orientation quaternion has a non-finite entry"));
   const VecX X = sys.makeState(Vec3::Zero(), Quat(2, 0, 0, 0), Vec3::Zero(), Vec3::Zero());
   CHECK(orientationOf(X).norm() == Approx(1.0));  // normalised on the way in

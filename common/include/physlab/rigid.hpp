@@ -149,7 +149,8 @@ class RotationMatrixSystem final : public System {
   std::string name() const override { return "rigid body (rotation matrix)"; }
   /// Applies gramSchmidt() to R when enabled.
   void project(VecX& X) const override;
-  /// Packs a state with orientation R(q).
+  /// Packs a state with orientation R(q) (q normalised first); throws InvalidInput for a zero or
+  /// non-finite quaternion or non-finite vectors.
   VecX makeState(const Vec3& x, const Quat& q, const Vec3& P, const Vec3& L) const;
   /// Kinetic energy \f$\frac{|P|^2}{2M} + \frac12 \omega \cdot L\f$ with \f$\omega = R I_{body}^{-1} R^T L\f$ [J].
   double kineticEnergy(const VecX& X) const;

@@ -61,7 +61,8 @@ std::vector<AppliedForce> RigidBodySystem::appliedForces(const VecX& X) const {
   const Vec3 x = X.head<3>();
   const Mat3 R = orientationOf(X).normalized().toRotationMatrix();
   std::vector<AppliedForce> applied;
-  applied.reserve(forces_.size() + 1);
+  // Exact count: a free body (no forces, no gravity) then allocates nothing in its derivative.
+  applied.reserve(forces_.size() + (gravity_.isZero() ? 0 : 1));
   for (const BodyForce& f : forces_) applied.push_back({x + R * f.point_body, f.force_world});
   if (!gravity_.isZero()) applied.push_back({x, body_.mass * gravity_});
   return applied;
@@ -83,6 +84,7 @@ void RotationMatrixSystem::project(VecX& X) const {
 }
 
 VecX RotationMatrixSystem::makeState(const Vec3& x, const Quat& q, const Vec3& P, const Vec3& L) const {
+  requireFinite(q.coeffs(), "orientation quaternion");
   if (!(q.norm() > 0.0)) throw InvalidInput("orientation quaternion is zero");
   VecX X(18);
   X.head<3>() = x;
