@@ -10,6 +10,10 @@
 
 #include "physlab/error.hpp"
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 namespace physlab {
 
 DemoOptions parseDemoOptions(int argc, char** argv, const std::string& what) {
@@ -99,6 +103,13 @@ std::string fmt(double value, int digits) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
+}
+
+void keepFreedMemory() {
+#ifdef __GLIBC__
+  mallopt(M_MMAP_THRESHOLD, 64 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
 }
 
 }  // namespace physlab

@@ -18,6 +18,15 @@ namespace {
 const Mat3 kInertia = Vec3(1.0, 2.0, 3.0).asDiagonal();
 const Vec3 kOmega0(0.4, 1.0, 0.6);  // body frame, a generic tumble
 
+// Line style of one curve: the colour names the integrator, the dash pattern the orientation
+// form, so that nine curves stay legible (gnuplot's default palette repeats after eight).
+std::string curveStyle(Method method, int form) {
+  const std::string colour = method == Method::ExplicitEuler     ? "#d62728"
+                             : method == Method::SymplecticEuler ? "#ff9f1c"
+                                                                 : "#1f5fbf";
+  return "lines lc rgb '" + colour + "' dt " + std::to_string(form + 1);
+}
+
 // Relative drift of the body-frame angular momentum magnitude |R^T L| from |L_0|. World L is
 // constant exactly (Ldot = 0 in the momentum form), so all its drift comes from R leaving the
 // rotations. Exact zeros are lifted to 1e-17 so that they stay visible on the log axis.
@@ -31,11 +40,13 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
   const RigidBody body(1.0, kInertia);
   const double h = 0.01, T = options.quick ? 10.0 : 60.0;
   const long steps = std::lround(T / h);
-  Chart energy("Torque-free body, h = 0.01: kinetic energy drift", "time [s]", "|E - E_0| / E_0");
+  // With no torque symplectic Euler's kick changes nothing: its curves lie on explicit Euler's.
+  Chart energy("Torque-free body, h = 0.01: kinetic energy drift (symplectic Euler = explicit Euler here)",
+               "time [s]", "|E - E_0| / E_0");
   Chart constraint("Torque-free body, h = 0.01: drift off the rotation group (no correction)",
                    "time [s]", "| |q| - 1 |   or   |R^T R - 1|");
-  Chart momentum("Torque-free body, h = 0.01: body-frame angular momentum drift", "time [s]",
-                 "| |R^T L| - |L_0| | / |L_0|");
+  Chart momentum("Torque-free body, h = 0.01: body-frame angular momentum drift (world L is exact)",
+                 "time [s]", "| |R^T L| - |L_0| | / |L_0|");
   energy.logY();
   constraint.logY();
   momentum.logY();
@@ -47,8 +58,8 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
         sys.setRenormalize(renormalize);
         VecX X = sys.makeState(Vec3::Zero(), Quat::Identity(), Vec3::Zero(), kInertia * kOmega0);
         const double E0 = sys.kineticEnergy(X), L0 = X.segment<3>(10).norm();
-        Series e{m + ", quaternion", {}, {}, "lines"}, c{m + ", |q| - 1", {}, {}, "lines"},
-            l{m + ", quaternion", {}, {}, "lines"};
+        Series e{m + ", quaternion", {}, {}, curveStyle(method, 0)},
+            c{m + ", |q| - 1", {}, {}, curveStyle(method, 0)}, l{m + ", quaternion", {}, {}, curveStyle(method, 0)};
         Integrator integrator(method);
         for (long n = 1; n <= steps; ++n) {
           integrator.step(sys, X, h);
@@ -76,8 +87,8 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
         const RotationMatrixSystem sys(body, gs);
         VecX X = sys.makeState(Vec3::Zero(), Quat::Identity(), Vec3::Zero(), kInertia * kOmega0);
         const double E0 = sys.kineticEnergy(X), L0 = X.segment<3>(15).norm();
-        Series e{m + ", " + form, {}, {}, "lines"}, c{m + ", |R^T R - 1|", {}, {}, "lines"},
-            l{m + ", " + form, {}, {}, "lines"};
+        Series e{m + ", " + form, {}, {}, curveStyle(method, gs ? 2 : 1)},
+            c{m + ", |R^T R - 1|", {}, {}, curveStyle(method, 1)}, l{m + ", " + form, {}, {}, curveStyle(method, gs ? 2 : 1)};
         Integrator integrator(method);
         for (long n = 1; n <= steps; ++n) {
           integrator.step(sys, X, h);
@@ -108,6 +119,16 @@ Vec3 omegaBody(const VecX& X) {
   return kInertia.inverse() * (R.transpose() * X.segment<3>(10));
 }
 
+// First flip time (first sign change of body-frame omega_2) of a torque-free spin started at
+// body-frame omega0 = (w1, w2, 0) with I1 < I2 < I3: Euler's equations give w2 ~ sn(lambda t + K, k),
+// so the sign change comes at t = K(k) / lambda (derivation in the handout, section 7).
+double flipTime(const Vec3& I, const Vec3& w) {
+  const double twoE = w.dot(I.cwiseProduct(w)), L2 = I.cwiseProduct(w).squaredNorm();
+  const double lambda = std::sqrt((I[1] - I[0]) * (twoE * I[2] - L2) / (I[0] * I[1] * I[2]));
+  const double k = std::sqrt((I[2] - I[1]) * (L2 - twoE * I[0]) / ((I[1] - I[0]) * (twoE * I[2] - L2)));
+  return std::comp_ellint_1(k) / lambda;
+}
+
 void dzhanibekovChart(const DemoOptions& options, std::vector<std::string>& written) {
   const RigidBodySystem sys(RigidBody(1.0, kInertia));
   Chart chart("Dzhanibekov effect: I = diag(1, 2, 3), omega_0 = (10^{-3}, 1, 0), RK4 h = 10^{-3}",
@@ -129,7 +150,8 @@ void dzhanibekovChart(const DemoOptions& options, std::vector<std::string>& writ
       }
     }
   });
-  chart.add(w1).add(w2).add(w3).mark({14.366, "first flip, 14.37 s (Euler's equations)"});
+  const double t_flip = flipTime(kInertia.diagonal(), Vec3(1e-3, 1.0, 0.0));
+  chart.add(w1).add(w2).add(w3).mark({t_flip, "first flip, K(k) / lambda = " + fmt(t_flip, 4) + " s"});
   for (const auto& p : chart.save(options.out + "/lab03_dzhanibekov")) written.push_back(p);
 }
 
@@ -161,9 +183,11 @@ void workPrecisionChart(const DemoOptions& options, std::vector<std::string>& wr
   for (const auto& p : chart.save(options.out + "/lab03_work_precision")) written.push_back(p);
 }
 
-// The 12 edges of a box of edge lengths `size` at pose (x, R), NaN columns between edges.
+// The 12 edges of a box of edge lengths `size` at pose (x, R). Two NaN columns follow each edge:
+// the animation writes a blank line per NaN column, and in 3D gnuplot joins blocks separated by
+// a single blank line into a mesh (drawing face diagonals); two blank lines keep edges apart.
 Mat3X boxEdges(const Vec3& x, const Mat3& R, const Vec3& size) {
-  Mat3X lines(3, 36);
+  Mat3X lines(3, 48);
   Index c = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -177,6 +201,7 @@ Mat3X boxEdges(const Vec3& x, const Mat3& R, const Vec3& size) {
         b[axis] = 0.5 * size[axis];
         lines.col(c++) = x + R * a;
         lines.col(c++) = x + R * b;
+        lines.col(c++) = Vec3::Constant(NAN);
         lines.col(c++) = Vec3::Constant(NAN);
       }
     }

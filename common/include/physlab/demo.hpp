@@ -23,6 +23,13 @@ struct DemoOptions {
 /// or a missing value. `what` is a one-line description printed by --help.
 DemoOptions parseDemoOptions(int argc, char** argv, const std::string& what);
 
+/// Keeps freed memory in the process (glibc's malloc only; a no-op elsewhere). A step that
+/// allocates and frees large buffers (an implicit cloth step's matrix and factorisation) would
+/// otherwise return the pages to the kernel and fault them in again on the next step, which on
+/// the development machine cost more than the solve itself (an LDLT step of a 12x12 cloth ran
+/// 3.5 times slower, and whichever run came first was penalised). Timings then measure the solver.
+void keepFreedMemory();
+
 /// Wall-clock stopwatch (steady clock).
 class Stopwatch {
  public:
