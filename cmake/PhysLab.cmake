@@ -16,8 +16,10 @@ if(EXISTS "${PHYSLAB_ROOT}/solutions")
 endif()
 set_property(GLOBAL PROPERTY PHYSLAB_STAGES "")
 
+set(PHYSLAB_WARNING_FLAGS -Wall -Wextra -Wpedantic -Wshadow)
+
 function(physlab_warnings target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow)
+  target_compile_options(${target} PRIVATE ${PHYSLAB_WARNING_FLAGS})
   if(PHYSLAB_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
@@ -38,15 +40,34 @@ function(physlab_add_common)
   target_precompile_headers(physlab_test_pch PUBLIC
       <catch2/catch.hpp> <Eigen/Dense> <Eigen/Sparse> <random> <vector> <string>)
 
-  # Test support (seeded random inputs, helpers) and Catch2's main, compiled once.
+  # Test support (seeded random inputs, oracles) and the test main, compiled once. The main
+  # (runner.cpp) compiles Catch2's implementation, so it cannot use the precompiled header.
   file(GLOB support CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/support/*.cpp")
-  list(FILTER support EXCLUDE REGEX "pch\\.cpp$")
-  add_library(physlab_test_support STATIC ${support})
+  list(FILTER support EXCLUDE REGEX "(pch|runner)\\.cpp$")
+  add_library(physlab_test_support OBJECT ${support})
   target_include_directories(physlab_test_support PUBLIC "${PHYSLAB_ROOT}/tests/support")
-  target_link_libraries(physlab_test_support PUBLIC physlab_common Catch2::Catch2WithMain)
+  target_link_libraries(physlab_test_support PUBLIC physlab_common Catch2::Catch2)
   target_precompile_headers(physlab_test_support REUSE_FROM physlab_test_pch)
   physlab_warnings(physlab_test_support)
+  add_library(physlab_test_runner OBJECT "${PHYSLAB_ROOT}/tests/support/runner.cpp")
+  target_link_libraries(physlab_test_runner PRIVATE Catch2::Catch2)
+  physlab_warnings(physlab_test_runner)
 
+  # What the grader needs to compile a submission apart from this tree and link it with the
+  # instructor's objects (tools/grader.py reads it; see the Grading page).
+  string(TOUPPER "${CMAKE_BUILD_TYPE}" build_type)
+  list(JOIN PHYSLAB_WARNING_FLAGS " " warnings)
+  file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/grading/toolchain.json" CONTENT "{
+  \"compiler\": \"${CMAKE_CXX_COMPILER}\",
+  \"flags\": \"${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${build_type}} ${CMAKE_CXX17_STANDARD_COMPILE_OPTION}\",
+  \"warnings\": \"${warnings}\",
+  \"include\": \"${PHYSLAB_ROOT}/common/include\",
+  \"system_include\": [\"$<JOIN:$<TARGET_PROPERTY:Eigen3::Eigen,INTERFACE_INCLUDE_DIRECTORIES>,\",\">\"],
+  \"main\": [\"$<JOIN:$<TARGET_OBJECTS:physlab_test_runner>;$<TARGET_OBJECTS:physlab_test_support>,\",\">\"],
+  \"common\": \"$<TARGET_FILE:physlab_common>\",
+  \"libraries\": [\"$<TARGET_FILE:Boost::iostreams>\", \"$<TARGET_FILE:Boost::filesystem>\", \"-pthread\"]
+}
+")
 endfunction()
 
 # Framework tests (tagged [common]): they grade nothing. They check validation in common/ and
@@ -54,7 +75,7 @@ endfunction()
 function(physlab_add_framework_tests)
   file(GLOB common_tests CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/common/*.cpp")
   add_executable(test_common ${common_tests})
-  target_link_libraries(test_common PRIVATE physlab_test_support physlab_01_particles_ref)
+  target_link_libraries(test_common PRIVATE physlab_test_runner physlab_test_support physlab_01_particles_ref)
   target_precompile_headers(test_common REUSE_FROM physlab_test_pch)
   physlab_warnings(test_common)
   catch_discover_tests(test_common TEST_PREFIX "common: " PROPERTIES TIMEOUT 60 LABELS solutions)
@@ -71,18 +92,45 @@ function(physlab_variant_executables name stage objects)
   endif()
 endfunction()
 
+# Graded tests of `stage` from `sources` into the object library `objects` and the executables
+# `exe` (reference) and `exe_labs` (labs/).
+function(physlab_add_tests stage objects exe sources)
+  add_library(${objects} OBJECT ${sources})
+  target_link_libraries(${objects} PRIVATE physlab_test_support)
+  target_precompile_headers(${objects} REUSE_FROM physlab_test_pch)
+  physlab_warnings(${objects})
+  physlab_variant_executables(${exe} ${stage} ${objects} physlab_test_runner physlab_test_support)
+endfunction()
+
 function(physlab_add_lab stage)
   cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
+  # Earlier stages this one links, with their own dependencies (the grader links them whole).
+  set(closure "")
+  foreach(dep IN LISTS ARG_DEPENDS)
+    get_property(dep_closure GLOBAL PROPERTY PHYSLAB_DEPENDS_${dep})
+    list(APPEND closure ${dep_closure} ${dep})
+  endforeach()
+  list(REMOVE_DUPLICATES closure)
+  set_property(GLOBAL PROPERTY PHYSLAB_DEPENDS_${stage} ${closure})
   set(deps "")
   foreach(dep IN LISTS ARG_DEPENDS)
     list(APPEND deps physlab_${dep}_ref)
   endforeach()
+
+  # Framework code of the stage, compiled once and shared by both implementations.
   file(GLOB framework CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/common/src/${stage}/*.cpp")
+  set(framework_objects "")
+  if(framework)
+    add_library(physlab_${stage}_framework OBJECT ${framework})
+    target_link_libraries(physlab_${stage}_framework PUBLIC physlab_common ${deps})
+    physlab_warnings(physlab_${stage}_framework)
+    set(framework_objects $<TARGET_OBJECTS:physlab_${stage}_framework>)
+  endif()
 
   # Student implementation, from PHYSLAB_LABS_DIR (absent in a submission that left it out).
   file(GLOB lab_sources CONFIGURE_DEPENDS "${PHYSLAB_LABS_DIR}/${stage}/*.cpp")
   if(lab_sources)
-    add_library(physlab_${stage}_labs STATIC ${lab_sources} ${framework})
+    add_library(physlab_${stage}_labs STATIC ${lab_sources} ${framework_objects})
     target_link_libraries(physlab_${stage}_labs PUBLIC physlab_common ${deps})
     physlab_warnings(physlab_${stage}_labs)
   endif()
@@ -93,26 +141,43 @@ function(physlab_add_lab stage)
   else()
     file(GLOB ref_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/labs/${stage}/*.cpp")
   endif()
-  add_library(physlab_${stage}_ref STATIC ${ref_sources} ${framework})
+  add_library(physlab_${stage}_ref STATIC ${ref_sources} ${framework_objects})
   target_link_libraries(physlab_${stage}_ref PUBLIC physlab_common ${deps})
   physlab_warnings(physlab_${stage}_ref)
 
-  # Graded tests: compiled once, linked against each implementation.
+  # Graded tests: compiled once, linked against each implementation. Hidden tests get their own
+  # executables, so that their text is never in a process that runs the visible tests.
   file(GLOB tests CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/${stage}/*.cpp")
-  if(PHYSLAB_HIDDEN_TESTS)
-    file(GLOB hidden CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/hidden/${stage}/*.cpp")
-    list(APPEND tests ${hidden})
-  endif()
-  add_library(physlab_${stage}_tests OBJECT ${tests})
-  target_link_libraries(physlab_${stage}_tests PRIVATE physlab_test_support)
-  target_precompile_headers(physlab_${stage}_tests REUSE_FROM physlab_test_pch)
-  physlab_warnings(physlab_${stage}_tests)
-  physlab_variant_executables(test_${stage} ${stage} physlab_${stage}_tests physlab_test_support)
+  physlab_add_tests(${stage} physlab_${stage}_tests test_${stage} "${tests}")
   catch_discover_tests(test_${stage} TEST_PREFIX "${stage}: " PROPERTIES TIMEOUT 120 LABELS solutions)
   if(TARGET test_${stage}_labs)
     catch_discover_tests(test_${stage}_labs TEST_PREFIX "labs ${stage}: "
                          PROPERTIES TIMEOUT 120 LABELS labs)
   endif()
+  set(hidden "")
+  if(PHYSLAB_HIDDEN_TESTS)
+    file(GLOB hidden CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/hidden/${stage}/*.cpp")
+  endif()
+  set(hidden_objects "")
+  if(hidden)
+    physlab_add_tests(${stage} physlab_${stage}_hidden test_${stage}_hidden "${hidden}")
+    catch_discover_tests(test_${stage}_hidden TEST_PREFIX "${stage} hidden: " PROPERTIES TIMEOUT 120 LABELS solutions)
+    set(hidden_objects $<TARGET_OBJECTS:physlab_${stage}_hidden>)
+  endif()
+
+  # The instructor's side of a graded link: tests, framework objects, earlier stages' reference.
+  set(dep_files "")
+  foreach(dep IN LISTS closure)
+    list(APPEND dep_files $<TARGET_FILE:physlab_${dep}_ref>)
+  endforeach()
+  file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/grading/${stage}.json" CONTENT "{
+  \"stage\": \"${stage}\",
+  \"tests\": [\"$<JOIN:$<TARGET_OBJECTS:physlab_${stage}_tests>,\",\">\"],
+  \"hidden\": [$<$<BOOL:${hidden}>:\"$<JOIN:${hidden_objects},\",\">\">],
+  \"framework\": [$<$<BOOL:${framework}>:\"$<JOIN:${framework_objects},\",\">\">],
+  \"depends\": [$<$<BOOL:${closure}>:\"$<JOIN:${dep_files},\",\">\">]
+}
+")
 
   # Demo (charts) for both implementations, benchmark for the reference.
   file(GLOB demo_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/demos/${stage}/*.cpp")

@@ -1,30 +1,80 @@
 #!/usr/bin/env python3
 """PhysLab's test runner and autograder.
 
-Runs every Catch2 test case of the chosen stages in its own process with a time limit, so a
-crash, a hang or an exception costs that test only, and writes a readable report plus
-Gradescope's results.json. Called by ./physlab (test, grade); see `grader.py --help`.
+Runs every Catch2 test case in its own process group with a time limit and resource limits, takes
+each verdict from an authenticated channel (tests/support/runner.cpp) rather than from anything the
+test prints, and writes a readable report plus Gradescope's results.json. `grade` compiles a
+submission's lab files apart from the instructor's tree, checks what the objects define, links them
+with the instructor's prebuilt objects, and runs them as an unprivileged user when run as root.
+The design and its limits are on the Grading page (docs/grading.md).
 """
 
 import argparse
 import concurrent.futures
+import ctypes
+import hashlib
+import hmac
 import json
 import os
+import pwd
 import re
+import secrets
 import shutil
 import signal
+import stat
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import xml.etree.ElementTree as ET
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 STAGE_RE = re.compile(r"^(\d\d)_[a-z0-9_]+$")
-OUTPUT_LIMIT = 8000  # characters of compiler or test output kept per test in results.json
+OUTPUT_LIMIT = 8000          # characters of a test's explanation kept in results.json
+OUTPUT_FILE_LIMIT = 4 << 20  # bytes a test process may write to stdout and stderr together
+SOURCE_LIMIT = 1 << 20       # bytes of one submitted source file
+TEST_MEMORY = 2 << 30        # address space of a test process; the largest test uses ~100 MB
+COMPILE_MEMORY = 4 << 30     # address space of the compiler on one lab file
+COMPILE_OUTPUT = 256 << 20   # bytes of one object file (ours are under 2 MB)
+SANDBOX_PROCESSES = 64       # processes a sandbox user may have at once
+SANDBOX_USER = "physlab-sandbox-{}"
+SHARED_LIBRARIES = ("libstdc++.so.6", "libm.so.6", "libc.so.6", "libgcc_s.so.1")
+# Sections a compiled lab file may contain. Anything else (.preinit_array, prioritised
+# .init_array.NNNNN, .ctors, .init, linker directives) could run code before the harness or change
+# the link, and is refused.
+ALLOWED_SECTIONS = re.compile(
+    r"^(|\.text(\..*)?|\.data(\..*)?|\.bss(\..*)?|\.rodata(\..*)?|\.tdata(\..*)?|\.tbss(\..*)?|"
+    r"\.init_array|\.fini_array|\.eh_frame|\.gcc_except_table(\..*)?|\.group|\.note\.GNU-stack|"
+    r"\.note\.gnu\.property|\.comment|\.rela?\..*|\.symtab|\.strtab|\.shstrtab|\.debug_.*)$")
 
+
+# ---- text that reaches a report ----------------------------------------------------------------
+
+ANSI_RE = re.compile(r"\x1b(\[[0-9;?]*[ -/]*[@-~]|\][^\x07\x1b]*(\x07|\x1b\\)|[@-Z\\-_])")
+CONTROL_RE = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+
+
+def clean(text) -> str:
+    """Text safe for a report: valid UTF-8, no escape sequences or control characters."""
+    if isinstance(text, bytes):
+        text = text.decode("utf-8", errors="replace")
+    text = text.encode("utf-8", errors="replace").decode("utf-8")
+    return CONTROL_RE.sub("", ANSI_RE.sub("", text.replace("\r\n", "\n")))
+
+
+def read_capped(path: Path, limit: int = 1 << 20) -> str:
+    try:
+        with open(path, "rb") as f:
+            return clean(f.read(limit))
+    except OSError:
+        return ""
+
+
+# ---- tests and their results -------------------------------------------------------------------
 
 @dataclass
 class TestCase:
@@ -63,6 +113,7 @@ class StageResult:
     stage: str
     tests: list = field(default_factory=list)
     compile_error: str = ""
+    notes: list = field(default_factory=list)
 
 
 def discover_stages(root: Path) -> list:
@@ -77,7 +128,7 @@ def select_stages(all_stages: list, wanted: list) -> list:
         return all_stages
     chosen = []
     for w in wanted:
-        matches = [s for s in all_stages if s == w or s[:2] == w.zfill(2)]
+        matches = [s for s in all_stages if s == w or (w.isdigit() and s[:2] == w.zfill(2))]
         if not matches:
             raise SystemExit(f"grader: no lab '{w}' (labs: {', '.join(all_stages)})")
         chosen += [m for m in matches if m not in chosen]
@@ -90,28 +141,28 @@ def escape_spec(name: str) -> str:
 
 
 def list_tests(exe: Path, stage: str) -> list:
-    names = subprocess.run([str(exe), "--list-test-names-only"], capture_output=True,
-                           text=True, timeout=60).stdout.splitlines()  # exit code = count
+    """The test cases of an instructor-built executable, from its --physlab-list."""
+    listing = subprocess.run([str(exe), "--physlab-list"], capture_output=True, timeout=60,
+                             check=True).stdout.decode("ascii", errors="replace")
     cases = []
-    for name in (n.strip() for n in names):
-        if not name:
-            continue
-        listing = subprocess.run([str(exe), "--list-tests", escape_spec(name)],
-                                 capture_output=True, text=True, timeout=60).stdout
-        tags = re.findall(r"\[([^\]]+)\]", " ".join(
-            line for line in listing.splitlines() if line.lstrip().startswith("[")))
-        cases.append(TestCase(stage=stage, name=name, tags=tags))
+    for line in listing.splitlines():
+        name_hex, _, tags = line.partition("\t")
+        cases.append(TestCase(stage=stage, name=bytes.fromhex(name_hex).decode("utf-8", "replace"),
+                              tags=[t for t in tags.split(",") if t]))
     return cases
 
 
-def describe_failure(xml_text: str) -> tuple:
-    """(status, explanation) from Catch2's XML report of one test case."""
+def describe_failure(output: str) -> tuple:
+    """(status, explanation) from the Catch2 XML report inside a test's output. The output is the
+    student's as much as the harness's: it only explains, it never decides a pass."""
+    start, end = output.find("<Catch"), output.rfind("</Catch>")
+    if start < 0 or end < 0:
+        return "failed", ""
     try:
-        tree = ET.fromstring(xml_text)
+        tree = ET.fromstring(output[start:end + len("</Catch>")])
     except ET.ParseError:
-        return "crashed", "the test process ended before finishing its report"
+        return "failed", ""
     lines = []
-    status = "failed"
     nested = {id(e) for x in tree.iter("Expression") for e in x.findall("Exception")}
     for node in tree.iter():
         if id(node) in nested:
@@ -129,69 +180,265 @@ def describe_failure(xml_text: str) -> tuple:
             if exc:
                 lines.append(f"  threw: {exc.strip()}")
         elif node.tag == "Exception":
-            text = (node.text or "").strip()
-            if "not implemented" in text:
-                status = "not implemented"
-            lines.append(f"threw: {text}")
+            lines.append(f"threw: {(node.text or '').strip()}")
         elif node.tag == "FatalErrorCondition":
-            status = "crashed"
             lines.append(f"fatal: {(node.text or '').strip()}")
-    if status == "failed" and any("not implemented" in l for l in lines):
-        status = "not implemented"
+    status = "not implemented" if any("not implemented" in l for l in lines) else "failed"
     return status, "\n".join(lines)
 
 
-def run_one(exe: Path, case: TestCase, seed: int, timeout: float) -> TestCase:
-    start = time.monotonic()
-    cmd = [str(exe), escape_spec(case.name), "-r", "xml", "--rng-seed", str(seed)]
+# ---- running untrusted processes ---------------------------------------------------------------
+
+class Sandbox:
+    """Where and as whom student code runs. As root: one unprivileged user per parallel worker, so
+    that killing every process of that user ends whatever a test left behind. Otherwise: the
+    current user, with process groups and the grader as subreaper for orphans."""
+
+    def __init__(self, jobs: int, switch_user: bool):
+        self.root = switch_user and os.geteuid() == 0
+        self.slots = list(range(max(1, jobs)))
+        self.free = list(self.slots)
+        self.lock = threading.Lock()
+        self.cond = threading.Condition(self.lock)
+        self.live = set()  # pids of processes started and not yet reaped by their thread
+        if self.root:
+            for slot in self.slots:
+                ensure_user(SANDBOX_USER.format(slot))
+        try:  # orphans of a killed test become our children, so the sweep can find them
+            ctypes.CDLL(None, use_errno=True).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
+        except (OSError, AttributeError):
+            pass
+
+    def acquire(self) -> int:
+        with self.cond:
+            while not self.free:
+                self.cond.wait()
+            return self.free.pop()
+
+    def release(self, slot: int) -> None:
+        with self.cond:
+            self.free.append(slot)
+            self.cond.notify()
+
+    def ids(self, slot: int):
+        if not self.root:
+            return None
+        entry = pwd.getpwnam(SANDBOX_USER.format(slot))
+        return entry.pw_uid, entry.pw_gid
+
+    def limits(self, memory: int, cpu_seconds: float, fsize: int) -> list:
+        nproc = SANDBOX_PROCESSES if self.root else count_processes(os.getuid()) + SANDBOX_PROCESSES
+        return ["prlimit", f"--as={memory}", f"--nproc={nproc}", f"--fsize={fsize}",
+                f"--cpu={int(cpu_seconds) + 1}", "--core=0", "--nofile=256", "--"]
+
+    def spawn(self, cmd: list, ids, **options) -> subprocess.Popen:
+        """Starts cmd in a session of its own, as the sandbox user `ids` (uid, gid) if any; the
+        sweep leaves it alone until run() or end() has waited for it."""
+        with self.lock:
+            proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, start_new_session=True,
+                                    user=ids[0] if ids else None, group=ids[1] if ids else None,
+                                    extra_groups=[] if ids else None, **options)
+            self.live.add(proc.pid)
+        return proc
+
+    def run(self, cmd: list, *, slot: int, cwd: Path, timeout: float, memory: int,
+            stdout: int, pass_fds=(), extra_env=None, fsize: int = OUTPUT_FILE_LIMIT) -> tuple:
+        """Runs cmd in its own session; returns (returncode or None on timeout, seconds)."""
+        env = {"PATH": "/usr/bin:/bin", "LANG": "C.UTF-8", "HOME": str(cwd), "TMPDIR": str(cwd)}
+        env.update(extra_env or {})
+        ids = self.ids(slot)
+        start = time.monotonic()
+        proc = self.spawn(self.limits(memory, timeout, fsize) + cmd, ids, cwd=cwd, env=env,
+                          stdout=stdout, stderr=stdout, pass_fds=pass_fds)
+        try:
+            code = proc.wait(timeout=max(timeout, 0.1))
+        except subprocess.TimeoutExpired:
+            code = None
+        finally:
+            kill_group(proc.pid)
+            proc.wait()
+            with self.lock:
+                self.live.discard(proc.pid)
+            self.end(slot)
+        return code, time.monotonic() - start
+
+    def end(self, slot: int) -> None:
+        """Kills every process a run left behind."""
+        ids = self.ids(slot)
+        if ids:
+            for _ in range(3):  # kill(-1) as the sandbox user: every process of that user
+                killer = self.spawn(["kill", "-KILL", "-1"], ids, stdout=subprocess.DEVNULL,
+                                    stderr=subprocess.DEVNULL)
+                killer.wait()
+                with self.lock:
+                    self.live.discard(killer.pid)
+        self.sweep()
+
+    def sweep(self) -> None:
+        """Kills and reaps our children that no running test owns: orphans of ended tests."""
+        me = os.getpid()
+        for _ in range(50):
+            with self.lock:
+                orphans = [p for p in children_of(me) if p not in self.live]
+            if not orphans:
+                return
+            for pid in orphans:
+                kill_group(pid)
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                    os.waitpid(pid, 0)
+                except (ProcessLookupError, ChildProcessError, PermissionError):
+                    pass
+
+    def finish(self) -> None:
+        for slot in self.slots:
+            self.end(slot)
+            if self.root:
+                remove_files_of(self.ids(slot)[0])
+
+
+def ensure_user(name: str) -> None:
     try:
-        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout,
-                              errors="replace")
-    except subprocess.TimeoutExpired:
-        case.status, case.output = "timed out", f"killed after {timeout:g} s"
-        case.seconds = time.monotonic() - start
+        pwd.getpwnam(name)
+    except KeyError:
+        subprocess.run(["useradd", "--system", "--no-create-home", "--home-dir", "/nonexistent",
+                        "--shell", "/usr/sbin/nologin", "--user-group", name],
+                       check=True, capture_output=True)
+
+
+def kill_group(pid: int) -> None:
+    try:
+        os.killpg(pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+def proc_stats():
+    """(pid, ppid, uid) of every process."""
+    for entry in os.scandir("/proc"):
+        if not entry.name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry.name}/stat") as f:
+                ppid = int(f.read().rsplit(")", 1)[1].split()[1])
+            yield int(entry.name), ppid, entry.stat().st_uid
+        except (OSError, IndexError, ValueError):
+            continue
+
+
+def children_of(pid: int) -> list:
+    return [p for p, ppid, _ in proc_stats() if ppid == pid]
+
+
+def count_processes(uid: int) -> int:
+    return sum(1 for _, _, u in proc_stats() if u == uid)
+
+
+def remove_files_of(uid: int) -> None:
+    """Deletes what a sandbox user left in the world-writable folders."""
+    for top in ("/tmp", "/var/tmp", "/dev/shm"):
+        for dirpath, dirnames, filenames in os.walk(top, topdown=False):
+            for name in filenames + dirnames:
+                path = os.path.join(dirpath, name)
+                try:
+                    if os.lstat(path).st_uid == uid:
+                        if os.path.isdir(path) and not os.path.islink(path):
+                            shutil.rmtree(path, ignore_errors=True)
+                        else:
+                            os.unlink(path)
+                except OSError:
+                    pass
+
+
+class Deadline:
+    """The time left for grading; None means no overall limit."""
+
+    def __init__(self, seconds):
+        self.end = None if seconds is None else time.monotonic() + seconds
+
+    def left(self) -> float:
+        return float("inf") if self.end is None else self.end - time.monotonic()
+
+
+def run_one(sandbox: Sandbox, exe: Path, case: TestCase, seed: int, timeout: float,
+            deadline: Deadline, scratch: Path, homes: Path) -> TestCase:
+    """Runs one test case in homes/home-<slot>, its output and verdict files in the private
+    `scratch`; its status comes from the harness's authenticated verdict."""
+    budget = min(timeout, deadline.left())
+    if budget <= 1.0:
+        case.status, case.output = "not run", "not run: the grading deadline was reached"
         return case
-    case.seconds = time.monotonic() - start
-    if proc.returncode < 0:
-        sig = signal.Signals(-proc.returncode).name
-        _, detail = describe_failure(proc.stdout)
-        case.status = "crashed"
-        case.output = f"crashed ({sig})" + (f"\n{detail}" if detail else "")
-    elif proc.returncode == 0 and 'success="true"' in proc.stdout:
-        case.status = "passed"
-    else:
-        case.status, case.output = describe_failure(proc.stdout)
-        if not case.output:
-            case.output = (proc.stderr or proc.stdout)[-OUTPUT_LIMIT:]
+    slot = sandbox.acquire()
+    key = secrets.token_hex(32)
+    work = Path(tempfile.mkdtemp(dir=scratch, prefix="test-"))
+    home = homes / f"home-{slot}"
+    try:
+        read_end, write_end = os.pipe()
+        os.write(write_end, key.encode())
+        os.close(write_end)
+        out_fd = os.open(work / "output", os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+        verdict_fd = os.open(work / "verdict", os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+        cmd = [str(exe), escape_spec(case.name), "-r", "xml", "--rng-seed", str(seed)]
+        try:
+            code, case.seconds = sandbox.run(
+                cmd, slot=slot, cwd=home, timeout=budget, memory=TEST_MEMORY, stdout=out_fd,
+                pass_fds=(read_end, verdict_fd),
+                extra_env={"PHYSLAB_VERDICT": f"{read_end}:{verdict_fd}"})
+        finally:
+            for fd in (read_end, out_fd, verdict_fd):
+                os.close(fd)
+        judge(case, code, budget, key, read_capped(work / "verdict", 1 << 16),
+              read_capped(work / "output"))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+        sandbox.release(slot)
     return case
 
 
-def executable(build: Path, stage: str, variant: str) -> Path:
-    return build / (f"test_{stage}" + ("_labs" if variant == "labs" else ""))
+def judge(case: TestCase, code, budget: float, key: str, verdicts: str, output: str) -> None:
+    """Sets the case's status: passed only on a verdict line carrying this run's key that says
+    exactly this test ran, asserted something, and failed nothing."""
+    verdict = None
+    for line in verdicts.splitlines():
+        parts = line.split(" ")
+        if len(parts) == 6 and parts[0] == "physlab-verdict" and hmac.compare_digest(parts[1], key):
+            verdict = parts
+    status, detail = describe_failure(output)
+    if code is None:
+        case.status = "timed out"
+        case.output = f"killed after {budget:.3g} s" + (f"\n{detail}" if detail else "")
+        return
+    if verdict is not None:
+        cases, passed, failed, name_hex = verdict[2:]
+        same = name_hex == case.name.encode("utf-8").hex()
+        if cases == "1" and same and failed == "0" and passed != "0":
+            case.status, case.output = "passed", ""
+            return
+        if cases != "1" or not same:
+            status, detail = "failed", f"the harness ran {cases} test cases instead of this one"
+    elif code < 0:
+        name = signal.Signals(-code).name if -code in signal.Signals._value2member_map_ else str(-code)
+        why = " (output limit exceeded)" if -code == signal.SIGXFSZ else ""
+        case.status = "crashed"
+        case.output = f"crashed ({name}){why}" + (f"\n{detail}" if detail else "")
+        return
+    elif not detail:
+        status, detail = "crashed", f"the test process ended (exit code {code}) without a verdict"
+    case.status = status
+    case.output = detail or output[-OUTPUT_LIMIT:]
 
 
-def run_stages(build: Path, stages: list, variant: str, seed: int, timeout: float,
-               jobs: int, compile_errors: dict) -> list:
-    results = []
-    pool = concurrent.futures.ThreadPoolExecutor(max_workers=jobs)
-    for stage in stages:
-        result = StageResult(stage)
-        exe = executable(build, stage, variant)
-        listing_exe = exe if exe.exists() else executable(build, stage, "solutions")
-        if stage in compile_errors or not exe.exists():
-            result.compile_error = compile_errors.get(stage, f"{exe.name} was not built")
-            if listing_exe.exists() and listing_exe != exe:
-                result.tests = list_tests(listing_exe, stage)
-            for case in result.tests:
-                case.status, case.output = "not compiled", result.compile_error[-OUTPUT_LIMIT:]
-        else:
-            result.tests = list_tests(exe, stage)
-            futures = [pool.submit(run_one, exe, c, seed, timeout) for c in result.tests]
-            concurrent.futures.wait(futures)
-        results.append(result)
-    pool.shutdown()
-    return results
+def run_cases(sandbox: Sandbox, jobs: list, seed: int, timeout: float, deadline: Deadline,
+              scratch: Path, homes: Path, workers: int) -> None:
+    """Runs (exe, case) pairs, `workers` at a time."""
+    with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(run_one, sandbox, exe, case, seed, timeout, deadline, scratch, homes)
+                   for exe, case in jobs]
+        for future in futures:
+            future.result()
 
+
+# ---- reports -----------------------------------------------------------------------------------
 
 SYMBOL = {"passed": "PASS", "failed": "FAIL", "not implemented": "TODO", "timed out": "TIME",
           "crashed": "CRSH", "not compiled": "COMP", "not run": "----"}
@@ -208,9 +455,10 @@ def report(results: list, seed: int, title: str) -> str:
         total += possible
         earned += got
         out.append(f"== lab {r.stage}: {got:g} / {possible:g} points ==")
+        out += ["   note: " + n for n in r.notes]
         if r.compile_error:
-            out.append("   did not compile; every test of this lab scores 0. Compiler says:")
-            out += ["   | " + l for l in r.compile_error.strip().splitlines()[-25:]]
+            out.append("   did not compile; every test of this lab scores 0. The build says:")
+            out += ["   | " + l for l in r.compile_error.strip().splitlines()[-40:]]
         for t in r.tests:
             pts = f"{t.points if t.passed else 0:g}/{t.points:g}" if t.graded else "  - "
             extra = " [hidden]" if t.hidden else (" [framework]" if not t.graded else "")
@@ -219,7 +467,7 @@ def report(results: list, seed: int, title: str) -> str:
                 out += ["            " + l for l in t.output.splitlines()[:12]]
         out.append("")
     out.append(f"TOTAL: {earned:g} / {total:g} points")
-    return "\n".join(out)
+    return clean("\n".join(out))
 
 
 def gradescope_json(results: list, elapsed: float) -> dict:
@@ -227,29 +475,46 @@ def gradescope_json(results: list, elapsed: float) -> dict:
     for lab_index, r in enumerate(results, start=1):
         for i, t in enumerate((t for t in r.tests if t.graded), start=1):
             tests.append({
-                "name": f"lab {r.stage}: {t.name}",
+                "name": clean(f"lab {r.stage}: {t.name}"),
                 "number": f"{lab_index}.{i}",
                 "score": t.points if t.passed else 0.0,
                 "max_score": t.points,
                 "status": "passed" if t.passed else "failed",
-                "output": (t.status if t.passed else f"{t.status}\n{t.output}")[:OUTPUT_LIMIT],
+                "output": clean(t.status if t.passed else f"{t.status}\n{t.output}")[:OUTPUT_LIMIT],
                 "visibility": "after_published" if t.hidden else "visible",
                 "tags": t.tags,
             })
+    notes = [clean(f"lab {r.stage}: {n}") for r in results for n in r.notes]
     return {
         "score": sum(t["score"] for t in tests),
         "max_score": sum(t["max_score"] for t in tests),
         "execution_time": round(elapsed, 2),
-        "output": "Per-test results below; the full report is report.txt.",
+        "output": "\n".join(["Per-test results below; the full report is report.txt."] + notes),
         "tests": tests,
     }
 
 
+def write_atomically(path: Path, text: str) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write(text)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
 def write_outputs(out: Path, text: str, data: dict) -> None:
     out.mkdir(parents=True, exist_ok=True)
-    (out / "report.txt").write_text(text + "\n")
-    with open(out / "results.json", "w") as f:
-        json.dump(data, f, indent=2)
+    write_atomically(out / "report.txt", text + "\n")
+    write_atomically(out / "results.json", json.dumps(data, indent=2))
+
+
+def failure_outputs(out: Path, title: str, why: str, elapsed: float) -> dict:
+    text = clean(f"{title}\n\nGRADING FAILED: {why}\nscore: 0")
+    data = {"score": 0.0, "max_score": 0.0, "execution_time": round(elapsed, 2),
+            "output": clean(f"Grading failed: {why}"), "tests": []}
+    write_outputs(out, text, data)
+    return data
 
 
 def summary_line(results: list) -> tuple:
@@ -258,20 +523,45 @@ def summary_line(results: list) -> tuple:
     return passed, len(cases) - passed
 
 
-# ---- commands -------------------------------------------------------------------------------
+# ---- ./physlab test: the tree's own executables ------------------------------------------------
+
+def executables(build: Path, stage: str, variant: str) -> list:
+    suffix = "_labs" if variant == "labs" else ""
+    found = [build / f"test_{stage}{suffix}"]
+    if (build / f"test_{stage}_hidden{suffix}").exists():
+        found.append(build / f"test_{stage}_hidden{suffix}")
+    return found
+
 
 def cmd_run(args) -> int:
     """Run already built tests; print the report; optionally write results.json."""
     start = time.monotonic()
+    build = Path(args.build).resolve()
     stages = select_stages(discover_stages(ROOT), args.labs)
-    results = run_stages(Path(args.build), stages, args.variant, args.seed, args.timeout,
-                         args.jobs, {})
-    if args.variant == "solutions" and (Path(args.build) / "test_common").exists():
-        common = StageResult("common")
-        common.tests = list_tests(Path(args.build) / "test_common", "common")
-        for c in common.tests:
-            run_one(Path(args.build) / "test_common", c, args.seed, args.timeout)
+    sandbox = Sandbox(args.jobs, switch_user=False)  # the tree's own code: run it as we are
+    scratch = Path(tempfile.mkdtemp(prefix="physlab-test-"))
+    results, jobs = [], []
+    for stage in stages:
+        result = StageResult(stage)
+        for exe in executables(build, stage, args.variant):
+            if not exe.exists():
+                result.compile_error += f"{exe.name} was not built\n"
+                continue
+            cases = list_tests(exe, stage)
+            result.tests += cases
+            jobs += [(exe, c) for c in cases]
+        results.append(result)
+    if args.variant == "solutions" and (build / "test_common").exists():
+        common = StageResult("common", list_tests(build / "test_common", "common"))
+        jobs += [(build / "test_common", c) for c in common.tests]
         results.append(common)
+    for slot in sandbox.slots:
+        (scratch / f"home-{slot}").mkdir()
+    try:
+        run_cases(sandbox, jobs, args.seed, args.timeout, Deadline(None), scratch, scratch, args.jobs)
+    finally:
+        sandbox.finish()
+        shutil.rmtree(scratch, ignore_errors=True)
     title = f"PhysLab tests against {args.variant}/"
     text = report(results, args.seed, title)
     if args.out:
@@ -305,71 +595,448 @@ def stub_check(results: list) -> tuple:
     return len(graded) - wrong, wrong
 
 
+# ---- grading a submission: compile apart, check, link with the instructor's objects ------------
+
+class Kit:
+    """The instructor's build as the grader uses it (written by cmake/PhysLab.cmake): the compiler
+    and flags, and per stage the test, hidden-test and framework objects and earlier stages'
+    reference libraries. None of it is ever shown to student code."""
+
+    def __init__(self, build: Path):
+        folder = build / "grading"
+        if not (folder / "toolchain.json").exists():
+            raise RuntimeError(f"{folder} is missing: build the tests first (./physlab build)")
+        self.build = build
+        self.toolchain = json.loads((folder / "toolchain.json").read_text())
+        self.stages = {p.stem: json.loads(p.read_text()) for p in folder.glob("[0-9][0-9]_*.json")}
+        self.cache = folder / "cache"
+        self.cache.mkdir(mode=0o700, exist_ok=True)
+        headers = sorted((ROOT / "common" / "include").rglob("*"))
+        digest = hashlib.sha256(json.dumps(self.toolchain, sort_keys=True).encode())
+        for h in headers:
+            if h.is_file():
+                digest.update(str(h.relative_to(ROOT)).encode() + h.read_bytes())
+        self.digest = digest.hexdigest()
+        self._exports = None
+        self._symbols = {}
+
+    def compile_command(self, include: Path, source: Path, obj: Path) -> list:
+        cmd = [self.toolchain["compiler"]] + self.toolchain["flags"].split()
+        cmd += self.toolchain["warnings"].split() + ["-I", str(include)]
+        for d in self.toolchain["system_include"]:
+            cmd += ["-isystem", d]
+        return cmd + ["-MD", "-MF", str(obj.with_suffix(".d")), "-c", str(source), "-o", str(obj)]
+
+    def link_command(self, stage: str, tests: str, student: list, exe: Path) -> list:
+        spec = self.stages[stage]
+        # The instructor's objects come first and its libraries whole: wherever the student's
+        # objects and the instructor's define the same inline function, the instructor's is used.
+        cmd = [self.toolchain["compiler"]] + self.toolchain["flags"].split() + ["-o", str(exe)]
+        cmd += self.toolchain["main"] + spec[tests] + spec["framework"]
+        cmd += ["-Wl,--whole-archive"] + spec["depends"] + [self.toolchain["common"]]
+        return cmd + ["-Wl,--no-whole-archive"] + [str(o) for o in student] + self.toolchain["libraries"]
+
+    def symbols(self, path: str) -> tuple:
+        """(defined: name -> nm type, undefined names) of an object or archive's global symbols."""
+        if path not in self._symbols:
+            listing = subprocess.run(["nm", "-P", "-g", path], capture_output=True, timeout=60,
+                                     text=True, errors="replace").stdout
+            defined, undefined = {}, set()
+            for line in listing.splitlines():
+                parts = line.split()
+                if len(parts) < 2 or line.endswith(":"):
+                    continue
+                if parts[1] in "Uwv":
+                    undefined.add(parts[0])
+                else:
+                    defined[parts[0]] = parts[1]
+            self._symbols[path] = (defined, undefined)
+        return self._symbols[path]
+
+    def defined_by(self, paths: list) -> set:
+        found = set()
+        for p in paths:
+            if not p.startswith("-") and os.path.exists(p):
+                found |= set(self.symbols(p)[0])
+        return found
+
+    def exports(self) -> set:
+        """Symbols the shared libraries of the link define: a student's weak definition of one
+        would replace it for the whole executable (the harness included), so none is allowed."""
+        if self._exports is None:
+            self._exports = set()
+            libs = [l for l in self.toolchain["libraries"] if ".so" in l]
+            for name in SHARED_LIBRARIES:
+                libs.append(subprocess.run([self.toolchain["compiler"], f"-print-file-name={name}"],
+                                           capture_output=True, text=True).stdout.strip())
+            for lib in libs:
+                listing = subprocess.run(["nm", "-D", "--defined-only", lib], capture_output=True,
+                                         text=True, errors="replace").stdout
+                self._exports |= {l.split()[-1].split("@")[0] for l in listing.splitlines() if l.split()}
+        return self._exports
+
+
+def sections_of(obj: Path) -> list:
+    listing = subprocess.run(["readelf", "-S", "-W", str(obj)], capture_output=True, text=True,
+                             errors="replace", timeout=60).stdout
+    names = []
+    for line in listing.splitlines():
+        m = re.match(r"^\s*\[\s*(\d+)\]\s+(\S+)", line)
+        if m and m.group(1) != "0":
+            names.append(m.group(2))
+    return names
+
+
+def demangle(names) -> dict:
+    names = sorted(names)
+    if not names:
+        return {}
+    out = subprocess.run(["c++filt"], input="\n".join(names), capture_output=True, text=True).stdout
+    return dict(zip(names, out.splitlines()))
+
+
+def check_object(kit: Kit, stage: str, obj: Path, stub_defined: set, own_defined: set) -> list:
+    """Why a student's object may not be linked (empty when it may): what it defines must be what
+    the stub defines, or internal, or a weak copy of an inline function that replaces nothing."""
+    problems = [f"section {s} is not allowed in a lab file" for s in sections_of(obj)
+                if not ALLOWED_SECTIONS.match(s)]
+    defined, undefined = kit.symbols(str(obj))
+    spec = kit.stages[stage]
+    test_side = kit.defined_by(kit.toolchain["main"] + spec["tests"] + spec["hidden"])
+    library_side = kit.defined_by(spec["framework"] + spec["depends"] + [kit.toolchain["common"]])
+    exports = kit.exports()
+    strong = [s for s, t in defined.items() if t not in "WVu" and s not in stub_defined]
+    weak = [s for s, t in defined.items() if t in "WVu" and s in exports and s not in stub_defined]
+    reached = [s for s in undefined if s in test_side and s not in library_side
+               and s not in own_defined and s not in exports]
+    names = demangle(strong + weak + reached)
+    problems += [f"defines {names[s]}, which the stub does not: make helpers static or put them "
+                 f"in an anonymous namespace" for s in strong]
+    problems += [f"defines {names[s]}, a library function" for s in weak]
+    problems += [f"uses {names[s]}, which belongs to the test harness" for s in reached]
+    return problems
+
+
+def filter_diagnostics(text: str, allowed: list, shown: dict) -> str:
+    """Compiler output with the diagnostics located outside `allowed` folders left out, and the
+    sandbox's paths shown as the student's (shown: real prefix -> displayed prefix)."""
+    header = re.compile(r"^(?:In file included from |\s+from )?(/[^:]+):")
+    kept, keep = [], True
+    for line in text.splitlines():
+        m = header.match(line)
+        if m:
+            real = os.path.realpath(m.group(1))
+            keep = any(real == a or real.startswith(a.rstrip("/") + "/") for a in allowed)
+            if not keep:
+                kept.append("(a diagnostic in a file outside the submission and the framework is not shown)")
+        if keep:
+            for real, display in shown.items():
+                line = line.replace(real, display)
+            kept.append(line)
+    return "\n".join(kept)
+
+
+def dependencies(dfile: Path) -> list:
+    try:
+        text = dfile.read_text(errors="replace").replace("\\\n", " ")
+    except OSError:
+        return []
+    return text.split(":", 1)[1].split() if ":" in text else []
+
+
+@dataclass
+class Compiled:
+    obj: Path = None
+    log: str = ""
+    error: str = ""
+
+
+class Builder:
+    """Compiles lab files in the sandbox and links graded executables in the private folder."""
+
+    def __init__(self, kit: Kit, sandbox: Sandbox, private: Path, shared: Path, deadline: Deadline,
+                 compile_timeout: float):
+        self.kit, self.sandbox, self.private, self.shared = kit, sandbox, private, shared
+        self.deadline, self.compile_timeout = deadline, compile_timeout
+        self.include = shared / "include"
+        self.system = [os.path.realpath(d) for d in kit.toolchain["system_include"]]
+        self.system += ["/usr/include", "/usr/lib/gcc", "/usr/local/include"]
+
+    def compile(self, stage: str, name: str, source: bytes, prefix: str = "") -> Compiled:
+        key = hashlib.sha256(self.kit.digest.encode() + stage.encode() + name.encode() + source).hexdigest()
+        cached, cached_log = self.kit.cache / f"{key}.o", self.kit.cache / f"{key}.log"
+        target = self.private / stage / (prefix + name.replace(".cpp", ".o"))
+        target.parent.mkdir(parents=True, exist_ok=True)
+        if cached.exists() and cached_log.exists():
+            shutil.copyfile(cached, target)
+            return Compiled(target, cached_log.read_text())
+        budget = min(self.compile_timeout, self.deadline.left())
+        if budget <= 1.0:
+            return Compiled(error=f"{name}: not compiled: the grading deadline was reached")
+        slot = self.sandbox.acquire()
+        work = Path(tempfile.mkdtemp(dir=self.shared, prefix="compile-"))
+        try:
+            (work / name).write_bytes(source)
+            ids = self.sandbox.ids(slot)
+            if ids:
+                os.chown(work, *ids)
+            os.chmod(work, 0o700)
+            log_path = self.private / stage / f"{prefix}{name}.log"
+            log_fd = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+            obj = work / name.replace(".cpp", ".o")
+            try:
+                code, _ = self.sandbox.run(self.kit.compile_command(self.include, work / name, obj),
+                                           slot=slot, cwd=work, timeout=budget,
+                                           memory=COMPILE_MEMORY, stdout=log_fd, fsize=COMPILE_OUTPUT)
+            finally:
+                os.close(log_fd)
+            outside = [d for d in dependencies(obj.with_suffix(".d"))
+                       if not self.allowed(os.path.realpath(work / d))]
+            if outside:
+                return Compiled(error=f"{name} includes files outside the submission and the "
+                                      f"framework headers: {', '.join(sorted(set(outside))[:5])}")
+            log = filter_diagnostics(read_capped(log_path, 1 << 20),
+                                     [str(work), str(self.include)] + self.system,
+                                     {f"{work}/": f"labs/{stage}/", f"{self.include}/": "common/include/"})
+            if code is None:
+                return Compiled(error=f"{name}: compilation stopped after {budget:.0f} s")
+            if code != 0 or not obj.exists():
+                return Compiled(log=log, error=f"{name} did not compile")
+            shutil.copyfile(obj, target)
+            shutil.copyfile(target, cached)
+            cached_log.write_text(log)
+            return Compiled(target, log)
+        finally:
+            shutil.rmtree(work, ignore_errors=True)
+            self.sandbox.release(slot)
+
+    def allowed(self, real: str) -> bool:
+        roots = [str(self.shared)] + self.system
+        return any(real == r or real.startswith(r.rstrip("/") + "/") for r in roots)
+
+    def link(self, stage: str, tests: str, objects: list, exe: Path) -> str:
+        """Links; returns '' or an explanation naming the missing or doubly defined functions."""
+        budget = min(120.0, self.deadline.left())
+        try:
+            proc = subprocess.run(self.kit.link_command(stage, tests, objects, exe), capture_output=True,
+                                  text=True, errors="replace", timeout=max(budget, 1.0))
+        except subprocess.TimeoutExpired:
+            return "linking stopped at the grading deadline"
+        if proc.returncode == 0:
+            return ""
+        text = proc.stdout + proc.stderr
+        missing = sorted(set(re.findall(r"undefined reference to [`']([^']+)'", text)))
+        twice = sorted(set(re.findall(r"multiple definition of [`']([^']+)'", text)))
+        lines = [f"missing function: {m} (no definition in your files; is it written, with the "
+                 f"header's exact signature?)" for m in missing]
+        lines += [f"defined twice: {t}" for t in twice]
+        return "\n".join(lines) or "the lab did not link"
+
+
+def submitted_sources(labs: Path, stage: str, notes: list) -> dict:
+    """name -> bytes of the lab files to grade: the submission's regular files named as the stub's
+    files of the stage; the stub where the submission has none."""
+    sources = {}
+    for stub in sorted((ROOT / "labs" / stage).glob("*.cpp")):
+        path = labs / stage / stub.name
+        try:
+            info = os.lstat(path)
+        except OSError:
+            notes.append(f"{stub.name} is not in the submission: graded with the stub")
+            sources[stub.name] = stub.read_bytes()
+            continue
+        if not stat.S_ISREG(info.st_mode):
+            notes.append(f"{stub.name} is not a regular file (a link?): graded with the stub")
+            sources[stub.name] = stub.read_bytes()
+        elif info.st_size > SOURCE_LIMIT:
+            notes.append(f"{stub.name} is larger than {SOURCE_LIMIT >> 10} KiB: graded with the stub")
+            sources[stub.name] = stub.read_bytes()
+        else:
+            with open(path, "rb", opener=lambda p, f: os.open(p, f | os.O_NOFOLLOW)) as f:
+                sources[stub.name] = f.read(SOURCE_LIMIT)
+    stage_dir = labs / stage
+    if stage_dir.is_dir() and not stage_dir.is_symlink():
+        extra = sorted(p.name for p in stage_dir.iterdir() if p.name not in sources)
+        if extra:
+            notes.append(f"ignored (only the stub's files are graded): {', '.join(extra[:10])}")
+    return sources
+
+
 def find_labs(submission: Path):
     """The labs/ folder inside a submission (a labs/ copy or a whole repo), or None."""
     for candidate in (submission / "labs", submission):
-        if candidate.is_dir() and any(STAGE_RE.match(p.name) for p in candidate.iterdir()):
+        if candidate.is_dir() and not candidate.is_symlink() and \
+                any(STAGE_RE.match(p.name) for p in candidate.iterdir()):
             return candidate
     return None
 
 
-def cmd_grade(args) -> int:
-    """Grade one submission into --out, or several into --out/<name>/ plus scores.csv."""
-    if len(args.submissions) == 1:
-        grade_one(args, Path(args.submissions[0]), Path(args.out))
-        return 0
-    rows = ["submission,score,max_score"]
-    for sub_path in args.submissions:
-        data = grade_one(args, Path(sub_path), Path(args.out) / Path(sub_path).resolve().name)
-        rows.append(f"{Path(sub_path).resolve().name},{data['score']:g},{data['max_score']:g}")
-    (Path(args.out) / "scores.csv").write_text("\n".join(rows) + "\n")
-    print("\n".join(rows))
-    print(f"wrote {Path(args.out) / 'scores.csv'}")
-    return 0
+def build_stage(builder: Builder, kit: Kit, labs: Path, result: StageResult, hidden: list,
+                run_dir: Path) -> tuple:
+    """Compiles, checks and links one stage; returns (visible exe, hidden exe) or (None, None)."""
+    stage = result.stage
+    sources = submitted_sources(labs, stage, result.notes)
+    stubs = {n: (ROOT / "labs" / stage / n).read_bytes() for n in sources}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=len(builder.sandbox.slots)) as pool:
+        done = dict(zip(sources, pool.map(lambda n: builder.compile(stage, n, sources[n]), sources)))
+        stub_objs = dict(zip(stubs, pool.map(lambda n: builder.compile(stage, n, stubs[n], "stub-"), stubs)))
+    errors = [c.error + ("\n" + c.log if c.log else "") for c in done.values() if c.error]
+    if any(s.error for s in stub_objs.values()):
+        raise RuntimeError(f"the instructor's stubs of {stage} do not compile")
+    if errors:
+        result.compile_error = "\n".join(errors)
+        return None, None
+    stub_defined = kit.defined_by([str(s.obj) for s in stub_objs.values()])
+    own_defined = kit.defined_by([str(c.obj) for c in done.values()])
+    problems = []
+    for name, c in done.items():
+        problems += [f"{name}: {p}" for p in check_object(kit, stage, c.obj, stub_defined, own_defined)]
+    if problems:
+        result.compile_error = "refused:\n" + "\n".join(problems[:30])
+        return None, None
+    warnings = "\n".join(c.log for c in done.values() if c.log.strip())
+    if warnings:
+        result.notes.append("compiler warnings:\n" + warnings[-OUTPUT_LIMIT:])
+    objects = [c.obj for c in done.values()]
+    exe = builder.private / stage / f"test_{stage}"
+    error = builder.link(stage, "tests", objects, exe)
+    if error:
+        result.compile_error = error
+        return None, None
+    hidden_exe = None
+    if hidden:
+        hidden_exe = builder.private / stage / f"test_{stage}_hidden"
+        if builder.link(stage, "hidden", objects, hidden_exe):
+            hidden_exe = None
+            for case in hidden:
+                case.status, case.output = "not compiled", "the hidden tests did not link"
+    visible = run_dir / exe.name
+    shutil.copyfile(exe, visible)
+    os.chmod(visible, 0o755)
+    return visible, hidden_exe
 
 
-def grade_one(args, submission: Path, out: Path) -> dict:
-    """Build a submission's labs/ against the instructor's tests, run, report. Never raises:
-    whatever goes wrong, report.txt and results.json are written."""
+def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> dict:
+    """Grades one submission into `out`. Never raises: whatever the submission does, report.txt and
+    results.json are written, last and atomically."""
     start = time.monotonic()
-    out = out.resolve()
-    stages = select_stages(discover_stages(ROOT), args.labs)
-    submission = submission.resolve()
+    deadline = Deadline(args.deadline)
+    title = f"PhysLab grade of {submission.name}"
+    private = Path(tempfile.mkdtemp(prefix="physlab-grade-"))
+    shared = Path(tempfile.mkdtemp(prefix="physlab-sandbox-"))
     try:
+        stages = select_stages(discover_stages(ROOT), args.labs)
         labs = find_labs(submission) if submission.is_dir() else None
         if labs is None:
-            raise RuntimeError(f"no labs/ folder with NN_name stages in {submission}")
-        build = Path(args.build).resolve() if args.build else Path(tempfile.mkdtemp(prefix="physlab-grade-"))
-        configure = subprocess.run(
-            ["cmake", "-S", str(ROOT), "-B", str(build), f"-DPHYSLAB_LABS_DIR={labs}",
-             "-DCMAKE_BUILD_TYPE=Release"], capture_output=True, text=True)
-        if configure.returncode != 0:
-            raise RuntimeError("configuration failed:\n" + configure.stdout[-3000:] +
-                               configure.stderr[-3000:])
-        compile_errors = {}
+            raise RuntimeError("no labs/ folder with NN_name stages in the submission")
+        os.chmod(shared, 0o711)
+        shutil.copytree(ROOT / "common" / "include", shared / "include")
+        run_dir = shared / "run"
+        run_dir.mkdir(mode=0o711)
+        for path in [shared / "include"] + list((shared / "include").rglob("*")):
+            os.chmod(path, 0o755 if path.is_dir() else 0o644)
+        builder = Builder(kit, sandbox, private, shared, deadline, args.compile_timeout)
+        results, visible_jobs, hidden_jobs = [], [], []
         for stage in stages:
-            # The reference build lists the tests of a lab whose student code does not compile.
-            targets = [f"test_{stage}", f"test_{stage}_labs"]
-            proc = subprocess.run(["cmake", "--build", str(build), "-j", str(args.jobs),
-                                   "--target", *targets], capture_output=True, text=True)
-            if proc.returncode != 0 or not executable(build, stage, "labs").exists():
-                errors = [l for l in (proc.stdout + proc.stderr).splitlines()
-                          if "error" in l or "Error" in l or "note:" in l]
-                compile_errors[stage] = "\n".join(errors[-60:]) or proc.stderr[-OUTPUT_LIMIT:]
-        results = run_stages(build, stages, "labs", args.seed, args.timeout, args.jobs,
-                             compile_errors)
-        text = report(results, args.seed, f"PhysLab grade of {submission}")
+            visible = list_tests(kit.build / f"test_{stage}", stage)
+            hidden_ref = kit.build / f"test_{stage}_hidden"
+            hidden = list_tests(hidden_ref, stage) if hidden_ref.exists() else []
+            result = StageResult(stage, visible + hidden)
+            visible_exe, hidden_exe = build_stage(builder, kit, labs, result, hidden, run_dir)
+            if visible_exe is None:
+                for case in result.tests:
+                    case.status, case.output = "not compiled", result.compile_error[-OUTPUT_LIMIT:]
+            else:
+                visible_jobs += [(visible_exe, c) for c in visible]
+                if hidden_exe:
+                    hidden_jobs.append((hidden_exe, hidden))
+            results.append(result)
+        # Every visible test first; hidden tests only after every process of those runs is gone
+        # and their files removed, so no student process can carry a hidden test's text into a
+        # visible output.
+        make_homes(sandbox, shared)
+        run_cases(sandbox, visible_jobs, args.seed, args.timeout, deadline, private, shared, args.jobs)
+        sandbox.finish()
+        jobs = []
+        for hidden_exe, cases in hidden_jobs:
+            copy = run_dir / hidden_exe.name
+            shutil.copyfile(hidden_exe, copy)
+            os.chmod(copy, 0o755)
+            jobs += [(copy, c) for c in cases]
+        make_homes(sandbox, shared)
+        run_cases(sandbox, jobs, args.seed, args.timeout, deadline, private, shared, args.jobs)
+        sandbox.finish()
+        text = report(results, args.seed, title)
         data = gradescope_json(results, time.monotonic() - start)
-        if not args.build:
-            shutil.rmtree(build, ignore_errors=True)
+        write_outputs(out, text, data)
     except Exception as error:  # the grader must always leave a report behind
-        text = f"PhysLab grade of {submission}\n\nGRADING FAILED: {error}\nscore: 0"
-        data = {"score": 0.0, "max_score": 0.0, "execution_time": round(time.monotonic() - start, 2),
-                "output": f"Grading failed: {error}", "tests": []}
-    write_outputs(out, text, data)
+        sandbox.finish()
+        text = f"{title}\n\nGRADING FAILED: {error}"
+        data = failure_outputs(out, title, str(error), time.monotonic() - start)
+    finally:
+        shutil.rmtree(private, ignore_errors=True)
+        shutil.rmtree(shared, ignore_errors=True)
     print(text)
     print(f"\nwrote {out / 'report.txt'} and {out / 'results.json'}")
     return data
+
+
+def make_homes(sandbox: Sandbox, shared: Path) -> None:
+    """Fresh, empty working folders for the sandbox users (finish() removes their files)."""
+    for slot in sandbox.slots:
+        home = shared / f"home-{slot}"
+        shutil.rmtree(home, ignore_errors=True)
+        home.mkdir(mode=0o700)
+        if sandbox.ids(slot):
+            os.chown(home, *sandbox.ids(slot))
+
+
+def make_private(path: Path) -> None:
+    """Takes other users' access away (as root, before student code runs as a sandbox user)."""
+    if path.exists():
+        os.chmod(path, stat.S_IMODE(os.stat(path).st_mode) & ~0o077)
+
+
+def cmd_grade(args) -> int:
+    """Grade one submission into --out, or several into --out/<name>/ plus scores.csv."""
+    out = Path(args.out).resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    sandbox = Sandbox(args.jobs, switch_user=True)
+    if sandbox.root:
+        for path in (ROOT, Path(args.build).resolve(), out):
+            make_private(path)
+    kit = Kit(Path(args.build).resolve())
+    if len(args.submissions) == 1:
+        grade_one(args, kit, sandbox, Path(args.submissions[0]).absolute(), out)
+        return 0
+    rows = ["submission,score,max_score"]
+    for sub_path in args.submissions:
+        name = Path(sub_path).absolute().name
+        data = grade_one(args, kit, sandbox, Path(sub_path).absolute(), out / name)
+        rows.append(f"{name},{data['score']:g},{data['max_score']:g}")
+    write_atomically(out / "scores.csv", "\n".join(rows) + "\n")
+    print("\n".join(rows))
+    print(f"wrote {out / 'scores.csv'}")
+    return 0
+
+
+# ---- Gradescope --------------------------------------------------------------------------------
+
+def cmd_gradescope(args) -> int:
+    """Writes the Gradescope autograder zip: the tracked files, with setup.sh and run_autograder at
+    its top level."""
+    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True,
+                           check=True).stdout.decode().split("\0")
+    out = Path(args.out).resolve()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
+        for name in (f for f in files if f):
+            z.write(ROOT / name, f"physlab/{name}")
+        for script in ("setup.sh", "run_autograder"):
+            info = zipfile.ZipInfo(script)
+            info.external_attr = 0o755 << 16
+            z.writestr(info, (ROOT / "tools" / "gradescope" / script).read_text())
+    print(f"wrote {out} ({len([f for f in files if f])} files)")
+    return 0
 
 
 def main() -> int:
@@ -391,13 +1058,20 @@ def main() -> int:
                      help="fail: the stub check (every graded test must fail, not implemented)")
     run.add_argument("--summary", help="write 'passed failed' counts to this file")
     run.set_defaults(func=cmd_run)
-    grade = sub.add_parser("grade", parents=[common], help="grade one submission")
+    grade = sub.add_parser("grade", parents=[common], help="grade submissions")
     grade.add_argument("submissions", nargs="+", metavar="SUBMISSION",
                        help="a student's labs/ folder or a copy of the repo (several: one folder each)")
     grade.add_argument("--out", required=True,
                        help="folder for report.txt and results.json (several: DIR/<name>/ and scores.csv)")
-    grade.add_argument("--build", help="build folder to use and keep (default: a temporary one)")
+    grade.add_argument("--build", required=True, help="the instructor's built tree")
+    grade.add_argument("--deadline", type=float, default=540.0,
+                       help="seconds for the whole grade of one submission (Gradescope allows 600)")
+    grade.add_argument("--compile-timeout", type=float, default=120.0,
+                       help="seconds to compile one lab file")
     grade.set_defaults(func=cmd_grade)
+    package = sub.add_parser("gradescope", help="write the Gradescope autograder zip")
+    package.add_argument("--out", required=True, help="the zip file to write")
+    package.set_defaults(func=cmd_gradescope)
     args = parser.parse_args()
     return args.func(args)
 
