@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Gradescope image set-up: the instructor repository (with solutions/ and tests/hidden/) is
-# expected at /autograder/source. Installs the Debian packages and builds the reference once,
-# so grading a submission only compiles the student's files.
+# Gradescope image set-up. The autograder zip (./physlab gradescope) unpacks the instructor's tree
+# to /autograder/source/physlab. This installs the Debian packages, builds the instructor's side
+# of every graded link once, creates the sandbox users and compiles the stubs into the grader's
+# cache by grading them, so that grading a submission only compiles its changed lab files.
 set -euo pipefail
-cd /autograder/source
+cd /autograder/source/physlab
 ./physlab setup
-./physlab build
+./physlab grade labs --out /tmp/physlab-warm-up >/dev/null
