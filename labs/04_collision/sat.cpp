@@ -1,0 +1,99 @@
+// Lab 4, sections 5-6: the separating-axis test for boxes and convex polyhedra, clipping of the
+// incident face (Sutherland-Hodgman), and reduction of the manifold to 4 points.
+#include "physlab/collision.hpp"
+#include "physlab/error.hpp"
+
+namespace physlab {
+
+ContactPolygon clipPolygon(const ContactPolygon& polygon, const Vec3& plane_normal, double plane_offset,
+                           std::uint32_t plane_id) {
+  // Keep the edge's start when it is inside
+  // TODO(student): for each edge (p, q) of the polygon (q the next point, cyclically): d = m . p -
+  //   o; keep p when d <= 0.
+  // Add the crossing when the edge passes through the plane
+  // TODO(student): when d_p and d_q have strictly opposite signs, add p + d_p/(d_p - d_q) (q - p)
+  //   with depth 0 and id combineFeatures(p.id, plane_id).
+  notImplemented("clipPolygon", "Lab 4 handout, section 5", polygon, plane_normal, plane_offset, plane_id);
+}
+
+Manifold reduceContacts(const Vec3& normal, const ContactPolygon& candidates) {
+  // Start from the deepest point
+  // TODO(student): 4 or fewer candidates are returned as they are; otherwise the largest depth.
+  // Add the point farthest from it
+  // TODO(student): measure distances in the plane normal to n: remove the component along n first.
+  // Add the point farthest from the line through both (the largest triangle)
+  // TODO(student): |((p2 - p1) x (p - p1)) . n| is twice the triangle's area.
+  // Add the point outside that triangle that adds the most area to it
+  // TODO(student): for each candidate, the signed area it makes with each edge of the triangle, on
+  //   the side away from the triangle; keep the largest positive one (no fourth point when none is
+  //   outside).
+  notImplemented("reduceContacts", "Lab 4 handout, section 5", normal, candidates);
+}
+
+Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pose& pose_b) {
+  // Measure the overlap along an axis: radii of both projections minus the centres' distance
+  // TODO(student): r_A(L) = sum_i h_i |L . a_i| with a_i the columns of R_A; overlap = r_A + r_B -
+  //   |L . (x_A - x_B)|.
+  // Test the 6 face axes; any positive gap is a separating plane
+  // TODO(student): the columns of R_A and R_B; return an empty manifold at the first negative
+  //   overlap; orient the best axis so that L . (x_A - x_B) >= 0 (from B to A).
+  // Test the 9 edge-pair axes, skipping (near-)parallel edges whose faces were already tested
+  // TODO(student): L = a_i x b_j, skipped when |L| < 1e-6, else normalised; remember i and j of the
+  //   best.
+  // Prefer a face axis unless an edge axis is clearly shallower
+  // TODO(student): use the edge axis only when its overlap < (1 - kEdgeAxisBias) times the best
+  //   face overlap.
+  // Edge-edge: one point between the two edges that reach furthest towards each other
+  // TODO(student): A's edge along a_i passes through x_A + sum_{k != i} -sign(a_k . n) h_k a_k
+  //   (B's: +sign(b_k . n)); closestSegmentParameters on the two edges, the point is the midpoint,
+  //   the depth the overlap.
+  // Face: the reference face is the winner's face towards the other box
+  // TODO(student): its outward normal n_ref is -n for a face of A, n for a face of B.
+  // Find the incident face: the other box's face most anti-parallel to the reference normal
+  // TODO(student): the axis m of the other box with the largest |n_ref . c_m|, on the side with
+  //   n_ref . (sign c_m) < 0; its 4 corners, in order around the face, with their corner numbers as
+  //   ids.
+  // Clip it by the four side planes of the reference face
+  // TODO(student): for each of the two other axes u of the reference box: clipPolygon with (u, u .
+  //   x_ref + h_u) and (-u, -u . x_ref + h_u).
+  // Keep the points below the reference face, at most 4
+  // TODO(student): depth = n_ref . (face centre) - n_ref . p; keep depth >= 0 at p + depth/2 n_ref,
+  //   id combined with the reference face; then reduceContacts(n, ...).
+  notImplemented("collideBoxBox", "Lab 4 handout, section 5", a, pose_a, b, pose_b);
+}
+
+Manifold collideConvexConvex(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                             const Pose& pose_b) {
+  // Move both into the world
+  // TODO(student): pose.toWorld on every vertex (a std::vector each is fine here).
+  // Overlap along L, oriented from B to A: the smaller of the two ways the projections overlap
+  // TODO(student): with [lo, hi] the projections' ranges: min(hi_B - lo_A, hi_A - lo_B); the normal
+  //   is L for the first, -L for the second.
+  // Test every face normal of both; a positive gap is a separating plane
+  // (one-sided: the face's own body lies below it, the other body must reach down past it)
+  // TODO(student): one-sided for a face: its own body lies below it, so for a face of A overlap =
+  //   hi_A - lo_B with normal -L, for a face of B hi_B - lo_A with normal L.
+  // Test the cross product of every pair of edge directions
+  // TODO(student): skip near-parallel pairs (|d_A x d_B| < 1e-6 |d_A||d_B|); the overlap is
+  //   two-sided here.
+  // Prefer a face axis unless an edge axis is clearly shallower
+  // TODO(student): use the edge axis only when its overlap < (1 - kEdgeAxisBias) times the best
+  //   face overlap.
+  // Edge-edge: among the edges parallel to the winners, those reaching furthest across
+  // TODO(student): A's edge parallel to the winning direction with the smallest n . (midpoint), B's
+  //   with the largest; then closestSegmentParameters.
+  // Face: the reference face's outward normal points at the other body
+  // TODO(student): n_ref = the winning face's world normal.
+  // Find the incident face: the other body's face most anti-parallel to the reference normal
+  // TODO(student): the face with the smallest n_ref . (its world normal); its world vertices, ids =
+  //   vertex indices.
+  // Clip it by the side planes through the reference face's edges
+  // TODO(student): for each edge (p, q) of the reference face (counter-clockwise from outside):
+  //   side normal ((q - p) x n_ref) normalised, offset side . p.
+  // Keep the points below the reference face, at most 4
+  // TODO(student): depth = n_ref . (face centre) - n_ref . p; keep depth >= 0 at p + depth/2 n_ref,
+  //   id combined with the reference face; then reduceContacts(n, ...).
+  notImplemented("collideConvexConvex", "Lab 4 handout, section 6", a, pose_a, b, pose_b);
+}
+
+}  // namespace physlab

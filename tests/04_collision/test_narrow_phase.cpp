@@ -1,0 +1,254 @@
+// Lab 4 graded tests, narrow phase: properties every pair must have (no contact when apart,
+// symmetry under swapping, invariance under rigid motions, points inside both shapes), closed
+// forms for spheres and resting boxes, and the triangle-triangle test.
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "collision_support.hpp"
+#include "physlab/collision.hpp"
+#include "physlab/error.hpp"
+
+using namespace physlab;
+using namespace physlab::test;
+
+namespace {
+
+// Every pair the narrow phase covers, by the kinds of A and B.
+const std::vector<std::pair<Kind, Kind>> kPairs = {
+    {Kind::Sphere, Kind::Sphere}, {Kind::Sphere, Kind::Plane},   {Kind::Sphere, Kind::Box},
+    {Kind::Capsule, Kind::Sphere}, {Kind::Capsule, Kind::Capsule}, {Kind::Box, Kind::Plane},
+    {Kind::Box, Kind::Box},        {Kind::Tetrahedron, Kind::Tetrahedron}};
+
+// The pairs whose routine takes two shapes of one kind, so that swapping calls the same routine.
+Manifold collideSameKind(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb) {
+  if (a.index() != b.index()) return collide(a, pa, b, pb);
+  switch (a.index()) {
+    case 0:
+      return collideSphereSphere(std::get<Sphere>(a), pa, std::get<Sphere>(b), pb);
+    case 1:
+      return collideBoxBox(std::get<Box>(a), pa, std::get<Box>(b), pb);
+    case 2:
+      return collideCapsuleCapsule(std::get<Capsule>(a), pa, std::get<Capsule>(b), pb);
+    default:
+      return collideConvexConvex(std::get<ConvexPolyhedron>(a), pa, std::get<ConvexPolyhedron>(b), pb);
+  }
+}
+
+// A random configuration of the pair whose projections on a random direction overlap by
+// `overlap` (negative: a gap).
+struct Config {
+  Shape a, b;
+  Pose pa, pb;
+};
+Config randomConfig(Kind ka, Kind kb, double overlap) {
+  Config c{randomShape(ka), randomShape(kb), randomPose(1.0), randomPose(1.0)};
+  placeAlong(c.a, c.pa, c.b, c.pb, randomUnit(), -overlap);
+  return c;
+}
+
+// The manifold's point with the given id, or nullptr.
+const ContactPoint* findId(const Manifold& m, std::uint32_t id) {
+  for (int i = 0; i < m.count; ++i) {
+    if (m.points[i].id == id) return &m.points[i];
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("narrow phase: shapes apart by any margin have no contact", "[lab04][pts=2]") {
+  for (const auto& [ka, kb] : kPairs) {
+    for (int trial = 0; trial < 50; ++trial) {
+      // Gaps from 1e-4 m to 0.5 m, log-uniform: the small ones catch an inclusive test at d > 0.
+      const Config c = randomConfig(ka, kb, -std::exp(uniform(std::log(1e-4), std::log(0.5))));
+      INFO(pairName(c.a, c.b) << ", trial " << trial);
+      CHECK(collide(c.a, c.pa, c.b, c.pb).empty());
+    }
+  }
+}
+
+TEST_CASE("narrow phase: swapping A and B flips the normal and keeps depths and points", "[lab04][pts=2]") {
+  for (Kind k : {Kind::Sphere, Kind::Capsule, Kind::Box, Kind::Tetrahedron}) {
+    int touching = 0;
+    for (int trial = 0; trial < 50; ++trial) {
+      const Config c = randomConfig(k, k, uniform(0.01, 0.2));
+      const Manifold ab = collideSameKind(c.a, c.pa, c.b, c.pb), ba = collideSameKind(c.b, c.pb, c.a, c.pa);
+      INFO(pairName(c.a, c.b) << ", trial " << trial);
+      REQUIRE(ab.count == ba.count);
+      if (ab.empty()) continue;
+      ++touching;
+      // Both are computed from the same numbers in another order: round-off only.
+      CHECK((ab.normal + ba.normal).norm() < 1e-9);
+      for (int i = 0; i < ab.count; ++i) {
+        bool matched = false;
+        for (int j = 0; j < ba.count; ++j) {
+          // The same points, in any order: round-off of clipping in the other box's frame.
+          matched = matched || ((ab.points[i].position - ba.points[j].position).norm() < 1e-9 &&
+                                std::abs(ab.points[i].depth - ba.points[j].depth) < 1e-9);
+        }
+        CHECK(matched);
+      }
+    }
+    CHECK(touching > 15);  // extreme points pushed into each other: most trials touch
+  }
+}
+
+TEST_CASE("narrow phase: a rigid motion of the whole configuration moves the manifold with it", "[lab04][pts=2]") {
+  for (const auto& [ka, kb] : kPairs) {
+    for (int trial = 0; trial < 30; ++trial) {
+      const Config c = randomConfig(ka, kb, uniform(0.01, 0.2));
+      const Mat3 Q = randomRotation();
+      const Vec3 T = randomVec3(5.0);
+      const Shape b2 = moved(c.b, Q, T);
+      const Manifold m = collide(c.a, c.pa, c.b, c.pb), m2 = collide(c.a, moved(c.pa, Q, T), b2, moved(c.pb, Q, T));
+      INFO(pairName(c.a, c.b) << ", trial " << trial);
+      REQUIRE(m.count == m2.count);
+      if (m.empty()) continue;
+      // Positions up to 6 m from the origin: round-off, amplified a little by clipping.
+      CHECK((Q * m.normal - m2.normal).norm() < 1e-8);
+      for (int i = 0; i < m.count; ++i) {
+        const ContactPoint* p = findId(m2, m.points[i].id);
+        REQUIRE(p != nullptr);  // the same features touch, so the same ids
+        CHECK((Q * m.points[i].position + T - p->position).norm() < 1e-8);
+        CHECK(std::abs(m.points[i].depth - p->depth) < 1e-8);
+      }
+    }
+  }
+}
+
+TEST_CASE("narrow phase: every contact lies on or inside both shapes within its depth", "[lab04][pts=2]") {
+  for (const auto& [ka, kb] : kPairs) {
+    int touching = 0;
+    for (int trial = 0; trial < 50; ++trial) {
+      const Config c = randomConfig(ka, kb, uniform(0.01, 0.3));
+      const Manifold m = collide(c.a, c.pa, c.b, c.pb);
+      INFO(pairName(c.a, c.b) << ", trial " << trial);
+      if (m.empty()) continue;
+      ++touching;
+      CHECK(m.normal.norm() == Approx(1.0).epsilon(1e-12));  // unit, to round-off
+      CHECK(m.count <= Manifold::kMaxPoints);
+      // No contact is deeper than the overlap of the two projections on its own normal.
+      const double overlap = overlapAlong(c.a, c.pa, c.b, c.pb, m.normal);
+      for (int i = 0; i < m.count; ++i) {
+        const ContactPoint& p = m.points[i];
+        CHECK(p.depth >= 0.0);
+        CHECK(p.depth <= overlap + 1e-9);  // round-off of the support points
+        // The midpoint of two surface points p.depth apart is within p.depth / 2 of each surface.
+        CHECK(signedDistance(c.a, c.pa, p.position) <= 0.5 * p.depth + 1e-9);
+        CHECK(signedDistance(c.b, c.pb, p.position) <= 0.5 * p.depth + 1e-9);
+      }
+    }
+    CHECK(touching > 20);  // extreme points pushed into each other: most trials touch
+  }
+}
+
+TEST_CASE("narrow phase: sphere pairs give the closed-form depth, normal and point", "[lab04][pts=2]") {
+  const double ra = uniform(0.2, 1.0), rb = uniform(0.2, 1.0), overlap = uniform(0.01, 0.19);
+  const Vec3 u = randomUnit();
+  Pose pa, pb;
+  pb.x = randomVec3(2.0);
+  pa.x = pb.x + (ra + rb - overlap) * u;
+  const Manifold ss = collideSphereSphere(Sphere(ra), pa, Sphere(rb), pb);
+  REQUIRE(ss.count == 1);
+  // Closed forms evaluated in another order: round-off only.
+  CHECK(ss.points[0].depth == Approx(overlap).margin(1e-12));
+  CHECK((ss.normal - u).norm() < 1e-12);
+  CHECK((ss.points[0].position - (pb.x + (rb - 0.5 * overlap) * u)).norm() < 1e-12);
+
+  const double d = uniform(-1.0, 1.0);
+  const Plane ground(u, d);
+  pa.x = randomVec3(2.0);
+  pa.x += (d + ra - overlap - u.dot(pa.x)) * u;  // the centre at height r - overlap
+  const Manifold sp = collideSpherePlane(Sphere(ra), pa, ground);
+  REQUIRE(sp.count == 1);
+  CHECK(sp.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
+  CHECK((sp.normal - u).norm() < 1e-12);
+  CHECK((sp.points[0].position - (pa.x - (ra - 0.5 * overlap) * u)).norm() < 1e-12);
+
+  // A sphere beside the middle of a capsule's core: the distance to the core is perpendicular.
+  const Capsule capsule(uniform(0.1, 0.5), uniform(0.5, 1.0));
+  Pose pc = randomPose(1.0);
+  const Vec3 axis = pc.q * Vec3::UnitZ();
+  const Vec3 side = axis.cross(randomUnit()).normalized();
+  const Vec3 core = pc.x + uniform(-0.4, 0.4) * axis;
+  pb.x = core - (capsule.radius + rb - overlap) * side;
+  const Manifold cs = collideCapsuleSphere(capsule, pc, Sphere(rb), pb);
+  REQUIRE(cs.count == 1);
+  CHECK(cs.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
+  CHECK((cs.normal - side).norm() < 1e-12);
+
+  // A sphere over a face of a box, and one off a corner (closest point = the corner).
+  const Box box(Vec3(uniform(0.3, 1.0), uniform(0.3, 1.0), uniform(0.3, 1.0)));
+  const Pose pbox = randomPose(1.0);
+  pa.x = pbox.toWorld(Vec3(uniform(-0.2, 0.2), uniform(-0.2, 0.2), box.half_extents.z() + ra - overlap));
+  const Manifold face = collideSphereBox(Sphere(ra), pa, box, pbox);
+  REQUIRE(face.count == 1);
+  CHECK(face.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
+  CHECK((face.normal - pbox.q * Vec3::UnitZ()).norm() < 1e-12);
+  const Vec3 diagonal = Vec3(1, 1, 1).normalized();
+  pa.x = pbox.toWorld(box.half_extents + (ra - overlap) * diagonal);
+  const Manifold corner = collideSphereBox(Sphere(ra), pa, box, pbox);
+  REQUIRE(corner.count == 1);
+  CHECK(corner.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
+  CHECK((corner.normal - pbox.q * diagonal).norm() < 1e-12);
+}
+
+TEST_CASE("narrow phase: a sphere whose centre is inside a box leaves through the nearest face", "[lab04][pts=1]") {
+  const Box box(Vec3(0.5, 0.7, 0.9));
+  const Pose pbox = randomPose(1.0);
+  const double r = uniform(0.1, 0.3), inside = uniform(0.05, 0.2);
+  Pose pa;
+  pa.x = pbox.toWorld(Vec3(uniform(-0.2, 0.2), 0.7 - inside, uniform(-0.2, 0.2)));  // nearest: +y face
+  const Manifold m = collideSphereBox(Sphere(r), pa, box, pbox);
+  REQUIRE(m.count == 1);
+  CHECK(m.points[0].depth == Approx(r + inside).margin(1e-12));  // round-off only
+  CHECK((m.normal - pbox.q * Vec3::UnitY()).norm() < 1e-12);
+}
+
+TEST_CASE("narrow phase: a box resting on a plane touches at its 4 bottom corners", "[lab04][pts=2]") {
+  const Vec3 n = randomUnit();
+  const double d = uniform(-1.0, 1.0), overlap = uniform(0.001, 0.1);
+  const Box box(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
+  // Turn the box's -z face to face -n, then spin it about n by a random angle.
+  const Quat down = Quat::FromTwoVectors(Vec3::UnitZ(), n);
+  Pose pose;
+  pose.q = Quat(Eigen::AngleAxisd(uniform(0.0, 6.28), n)) * down;
+  pose.x = randomVec3(2.0);
+  pose.x += (d + box.half_extents.z() - overlap - n.dot(pose.x)) * n;
+  const Manifold m = collideBoxPlane(box, pose, Plane(n, d));
+  REQUIRE(m.count == 4);
+  CHECK((m.normal - n).norm() < 1e-12);  // round-off only
+  for (int i = 0; i < 4; ++i) {
+    CHECK(m.points[i].depth == Approx(overlap).margin(1e-12));  // round-off only
+    // The point is a bottom corner moved half the depth up to the plane.
+    const Vec3 corner = pose.toBody(m.points[i].position - 0.5 * overlap * n);
+    CHECK((corner.cwiseAbs() - box.half_extents).norm() < 1e-9);  // round-off of two rotations
+  }
+}
+
+TEST_CASE("narrow phase: triangles intersect exactly when an edge pierces the other", "[lab04][pts=2]") {
+  for (int trial = 0; trial < 200; ++trial) {
+    const Triangle t1(randomVec3(1.0), randomVec3(1.0), randomVec3(1.0));
+    const Vec3 &a = t1.corners[0], &b = t1.corners[1], &c = t1.corners[2];
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    // A point inside the first triangle and a second triangle through it (p is the midpoint of
+    // the median from p + u): they intersect.
+    double wa = uniform(0.05, 1.0), wb = uniform(0.05, 1.0), wc = uniform(0.05, 1.0);
+    const Vec3 p = (wa * a + wb * b + wc * c) / (wa + wb + wc);
+    const Vec3 u = uniform(0.1, 1.0) * (n + randomVec3(0.5)), w = randomVec3(1.0);
+    if (std::abs(u.dot(n)) < 0.05) continue;  // keep the second triangle clearly across the plane
+    const Pose pa = randomPose(1.0);
+    const Triangle t2(p + u, p - u + w, p - u - w);
+    INFO("trial " << trial);
+    CHECK(trianglesIntersect(t1, pa, t2, pa));
+    CHECK(trianglesIntersect(t2, pa, t1, pa));
+    // The same triangle moved clear of t1's plane (all its corners beyond a margin): apart.
+    const double lift = 1.1 * std::max({std::abs(n.dot(p + u - a)), std::abs(n.dot(p - u + w - a)),
+                                        std::abs(n.dot(p - u - w - a))}) + 0.01;
+    const Triangle t3(p + u + lift * n + std::abs(n.dot(u)) * n, p - u + w + lift * n, p - u - w + lift * n);
+    bool beyond = true;
+    for (const Vec3& q : t3.corners) beyond = beyond && n.dot(q - a) > 0.0;
+    if (beyond) CHECK_FALSE(trianglesIntersect(t1, pa, t3, pa));
+  }
+}
