@@ -334,20 +334,26 @@ def count_processes(uid: int) -> int:
     return sum(1 for _, _, u in proc_stats() if u == uid)
 
 
-def remove_files_of(uid: int) -> None:
-    """Deletes what a sandbox user left in the world-writable folders."""
-    for top in ("/tmp", "/var/tmp", "/dev/shm"):
-        for dirpath, dirnames, filenames in os.walk(top, topdown=False):
-            for name in filenames + dirnames:
-                path = os.path.join(dirpath, name)
-                try:
-                    if os.lstat(path).st_uid == uid:
-                        if os.path.isdir(path) and not os.path.islink(path):
-                            shutil.rmtree(path, ignore_errors=True)
-                        else:
-                            os.unlink(path)
-                except OSError:
-                    pass
+def remove_files_of(uid: int, folders=("/tmp", "/var/tmp", "/dev/shm")) -> None:
+    """Deletes what a sandbox user left in the world-writable folders: it can create files only in
+    those and in folders of its own, so only world-writable folders are searched."""
+    for folder in folders:
+        try:
+            entries = list(os.scandir(folder))
+        except OSError:
+            continue
+        for entry in entries:
+            try:
+                info = entry.stat(follow_symlinks=False)
+                if info.st_uid == uid:
+                    if stat.S_ISDIR(info.st_mode):
+                        shutil.rmtree(entry.path, ignore_errors=True)
+                    else:
+                        os.unlink(entry.path)
+                elif stat.S_ISDIR(info.st_mode) and info.st_mode & 0o002:
+                    remove_files_of(uid, (entry.path,))
+            except OSError:
+                pass
 
 
 class Deadline:
@@ -369,6 +375,17 @@ def run_one(sandbox: Sandbox, exe: Path, case: TestCase, seed: int, timeout: flo
         case.status, case.output = "not run", "not run: the grading deadline was reached"
         return case
     slot = sandbox.acquire()
+    try:
+        run_sandboxed_test(sandbox, slot, exe, case, seed, budget, scratch, homes)
+    except Exception as error:  # an error of the grader's own costs this test, not the grade
+        case.status, case.output = "crashed", f"the grader could not run this test: {error}"
+    finally:
+        sandbox.release(slot)
+    return case
+
+
+def run_sandboxed_test(sandbox: Sandbox, slot: int, exe: Path, case: TestCase, seed: int,
+                       budget: float, scratch: Path, homes: Path) -> None:
     key = secrets.token_hex(32)
     work = Path(tempfile.mkdtemp(dir=scratch, prefix="test-"))
     home = homes / f"home-{slot}"
@@ -391,8 +408,6 @@ def run_one(sandbox: Sandbox, exe: Path, case: TestCase, seed: int, timeout: flo
               read_capped(work / "output"))
     finally:
         shutil.rmtree(work, ignore_errors=True)
-        sandbox.release(slot)
-    return case
 
 
 def judge(case: TestCase, code, budget: float, key: str, verdicts: str, output: str) -> None:
@@ -1005,7 +1020,14 @@ def cmd_grade(args) -> int:
     if sandbox.root:
         for path in (ROOT, Path(args.build).resolve(), out):
             make_private(path)
-    kit = Kit(Path(args.build).resolve())
+    try:
+        kit = Kit(Path(args.build).resolve())
+    except Exception as error:  # no usable instructor build: every submission still gets its files
+        for sub_path in args.submissions:
+            target = out if len(args.submissions) == 1 else out / Path(sub_path).absolute().name
+            failure_outputs(target, f"PhysLab grade of {Path(sub_path).name}", str(error), 0.0)
+        print(f"grader: {error}", file=sys.stderr)
+        return 1
     if len(args.submissions) == 1:
         grade_one(args, kit, sandbox, Path(args.submissions[0]).absolute(), out)
         return 0
