@@ -66,7 +66,9 @@ Mat3 cylinderInertia(double M, double radius, double height);
 /// \f$\sum_i m_i\big((r_{0i}^T r_{0i})\mathbb 1 - r_{0i} r_{0i}^T\big)\f$, \f$r_{0i} = r_i - c\f$.
 /// Handout: Lab 3, section 1.
 Mat3 pointMassInertia(const VecX& m, const Mat3X& r);
-/// World angular velocity \f$\omega = R\, I_{body}^{-1} R^T L\f$ [rad/s]. Handout: Lab 3, section 2.
+/// World angular velocity \f$\omega = R\, I_{body}^{-1} R^T L\f$ [rad/s], with R the rotation of
+/// \f$q / |q|\f$: q need not have unit length (an integrated state's quaternion drifts off it
+/// between renormalisations). Handout: Lab 3, section 2.
 Vec3 angularVelocity(const RigidBody& body, const Quat& q, const Vec3& L);
 /// Total force and torque about the world point `x` (the centre of mass) of forces at world
 /// points: \f$F = \sum_i F_i\f$, \f$\tau = \sum_i (p_i - x) \times F_i\f$, world frame.

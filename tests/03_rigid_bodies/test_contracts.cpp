@@ -1,0 +1,63 @@
+// Lab 3 graded tests of each function's whole contract: unequal point masses, quaternions that
+// are not unit length, and Euler's equations with a torque and a non-diagonal inertia tensor.
+#include "physlab/rigid.hpp"
+#include "support.hpp"
+
+using namespace physlab;
+using namespace physlab::test;
+
+namespace {
+
+// A symmetric positive definite tensor with principal moments in [0.5, 3] along random axes.
+Mat3 randomInertia() {
+  const Mat3 B = randomRotation();
+  return B * Vec3(uniform(0.5, 1.0), uniform(1.5, 2.0), uniform(2.5, 3.0)).asDiagonal() * B.transpose();
+}
+
+}  // namespace
+
+TEST_CASE("inertia: point masses of unequal mass obey the parallel-axis theorem", "[lab03][pts=1]") {
+  const Index n = 6;
+  VecX m(n);
+  Mat3X r(3, n);
+  const Vec3 offset = randomVec3(3.0);  // far from the origin, so the centre matters
+  for (Index i = 0; i < n; ++i) {
+    m[i] = uniform(0.1, 5.0);  // masses 50x apart: the centre of mass is not the mean point
+    r.col(i) = offset + randomVec3(1.0);
+  }
+  Mat3 about_origin = Mat3::Zero();
+  for (Index i = 0; i < n; ++i) {
+    about_origin += m[i] * (r.col(i).squaredNorm() * Mat3::Identity() - r.col(i) * r.col(i).transpose());
+  }
+  const double M = m.sum();
+  const Vec3 c = r * m / M;
+  // Steiner: I_origin = I_centre + M (|c|^2 1 - c c^T).
+  const Mat3 shifted = pointMassInertia(m, r) + M * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
+  // Sums of products of numbers ~ 4: the cancellation in I_centre loses at most ~1e-14 relative.
+  CHECK((shifted - about_origin).norm() < 1e-12 * about_origin.norm());
+}
+
+TEST_CASE("rigid: angular velocity depends on the rotation q stands for, not on its length", "[lab03][pts=1]") {
+  const RigidBody body(uniform(1.0, 3.0), randomInertia());
+  const Quat q(randomRotation());
+  const Vec3 L = randomVec3(2.0);
+  const double scale = uniform(1.25, 2.0);  // the drift a state without renormalisation shows
+  const Quat stretched(scale * q.w(), scale * q.x(), scale * q.y(), scale * q.z());
+  const Vec3 omega = angularVelocity(body, q, L);
+  // q and scale q are the same rotation: equal up to the round-off of normalising.
+  CHECK((angularVelocity(body, stretched, L) - omega).norm() < 1e-12 * omega.norm());
+  // and the unit q gives I_world omega = L (condition number of I at most 6).
+  const Mat3 R = q.toRotationMatrix();
+  CHECK((R * body.inertia_body * R.transpose() * omega - L).norm() < 1e-12 * L.norm());
+}
+
+TEST_CASE("rigid: Euler's equations balance torque and the gyroscopic term for any inertia tensor", "[lab03][pts=1]") {
+  const Mat3 I = randomInertia();  // not diagonal: the body axes are not its principal axes
+  const Vec3 omega = randomVec3(2.0), torque = randomVec3(5.0);
+  const Vec3 gyroscopic = omega.cross(I * omega);
+  const Vec3 rate = bodyFrameOmegaRate(I, omega, torque);
+  // I omega_dot = tau - omega x I omega; the solve with condition number <= 6 loses ~1e-15.
+  CHECK((I * rate + gyroscopic - torque).norm() < 1e-12 * (torque.norm() + gyroscopic.norm()));
+  // A body at rest only feels the torque: omega_dot = I^-1 tau.
+  CHECK((I * bodyFrameOmegaRate(I, Vec3::Zero(), torque) - torque).norm() < 1e-12 * torque.norm());
+}
