@@ -7,9 +7,25 @@ if(DOXYGEN_FOUND)
   if(DOXYGEN_DOT_FOUND)
     set(PHYSLAB_HAVE_DOT YES)
   endif()
+  # MathJax from Debian's libjs-mathjax, copied beside the pages, so that formulas render with no
+  # network (a student on a train, an exam room).
+  find_path(PHYSLAB_MATHJAX_DIR MathJax.js PATHS /usr/share/javascript/mathjax NO_DEFAULT_PATH)
+  set(mathjax_copy "")
+  if(PHYSLAB_MATHJAX_DIR)
+    set(PHYSLAB_MATHJAX_RELPATH mathjax)
+    set(html "${CMAKE_BINARY_DIR}/docs/html/mathjax")
+    set(mathjax_copy COMMAND "${CMAKE_COMMAND}" -E copy "${PHYSLAB_MATHJAX_DIR}/MathJax.js" "${html}/MathJax.js")
+    foreach(part config extensions fonts jax)
+      list(APPEND mathjax_copy COMMAND "${CMAKE_COMMAND}" -E copy_directory "${PHYSLAB_MATHJAX_DIR}/${part}" "${html}/${part}")
+    endforeach()
+  else()
+    set(PHYSLAB_MATHJAX_RELPATH "")  # Doxygen's default: the MathJax CDN
+    message(WARNING "libjs-mathjax is not installed: the docs' formulas need the network to render")
+  endif()
   configure_file("${PHYSLAB_ROOT}/docs/Doxyfile.in" "${CMAKE_BINARY_DIR}/Doxyfile" @ONLY)
   add_custom_target(docs
     COMMAND "${DOXYGEN_EXECUTABLE}" "${CMAKE_BINARY_DIR}/Doxyfile"
+    ${mathjax_copy}
     WORKING_DIRECTORY "${PHYSLAB_ROOT}"
     COMMENT "Building the Doxygen site in ${CMAKE_BINARY_DIR}/docs/html"
     VERBATIM)
