@@ -70,18 +70,21 @@ Pose advance(const Pose& pose, const Motion& motion, double t);
 
 /// A ball of radius r about the body origin.
 struct Sphere {
+  /// A sphere of radius r > 0 [m]; throws InvalidInput otherwise.
   explicit Sphere(double radius);
   double radius;  ///< r [m]
 };
 
 /// A box \f$|p_i| \le h_i\f$ in the body frame.
 struct Box {
+  /// A box of positive, finite half extents [m]; throws InvalidInput otherwise.
   explicit Box(const Vec3& half_extents);
   Vec3 half_extents;  ///< \f$h = (h_x, h_y, h_z)\f$, body frame [m]
 };
 
 /// The points within `radius` of the segment from \f$(0, 0, -h)\f$ to \f$(0, 0, h)\f$, body frame.
 struct Capsule {
+  /// A capsule of radius r > 0 and half height h > 0 [m]; throws InvalidInput otherwise.
   Capsule(double radius, double half_height);
   double radius;       ///< r [m]
   double half_height;  ///< h: half the length of the core segment, along body z [m]
@@ -173,6 +176,7 @@ struct Manifold {
   Vec3 normal = Vec3::Zero();           ///< unit, world frame, from B to A (zero when empty)
   std::array<ContactPoint, kMaxPoints> points;  ///< the first `count` are valid
   int count = 0;                        ///< number of contact points, 0 when the shapes are apart
+  /// True when the shapes are apart (no contact points).
   bool empty() const { return count == 0; }
   /// Appends a point (ignored when already full).
   void add(const Vec3& position, double depth, std::uint32_t id) {
