@@ -267,8 +267,8 @@ class Sandbox:
         ids = self.ids(slot)
         if ids:
             for _ in range(3):  # kill(-1) as the sandbox user: every process of that user
-                killer = self.spawn(["kill", "-KILL", "-1"], ids, stdout=subprocess.DEVNULL,
-                                    stderr=subprocess.DEVNULL)
+                killer = self.spawn(["/bin/sh", "-c", "kill -9 -1"], ids,
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                 killer.wait()
                 with self.lock:
                     self.live.discard(killer.pid)
@@ -985,7 +985,10 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> 
         data = gradescope_json(results, time.monotonic() - start)
         write_outputs(out, text, data)
     except Exception as error:  # the grader must always leave a report behind
-        sandbox.finish()
+        try:
+            sandbox.finish()
+        except Exception as cleanup:
+            error = f"{error}; then, ending the sandbox: {cleanup}"
         text = f"{title}\n\nGRADING FAILED: {error}"
         data = failure_outputs(out, title, str(error), time.monotonic() - start)
     finally:
