@@ -287,12 +287,7 @@ int main(int argc, char** argv) {
     const int brute_force_limit = 10000;  // 5e7 tests per query; 10^5 boxes would take ~10 s each
 
     std::vector<Row> rows;
-    std::vector<std::unique_ptr<BroadPhase>> methods;
-    methods.push_back(std::make_unique<BruteForce>());
-    methods.push_back(std::make_unique<SweepAndPrune>());
-    methods.push_back(std::make_unique<UniformGrid>());
-    methods.push_back(std::make_unique<Bvh>());
-    methods.push_back(std::make_unique<KdTree>());
+    const std::vector<std::unique_ptr<BroadPhase>> methods = allBroadPhases();
     for (const auto& m : methods) rows.push_back({"PhysLab", m->name(), m->name(), {}});
     Row sap_update{"PhysLab", "sort and sweep, update (boxes unmoved)", "SAP update (unmoved)", {}};
     Row bvh_refit{"PhysLab", "BVH, refit (boxes unmoved)", "BVH refit (unmoved)", {}};

@@ -113,12 +113,7 @@ void broadPhaseChart(const DemoOptions& options, std::vector<std::string>& writt
                                                : std::vector<int>{100, 316, 1000, 3162, 10000, 31623, 100000};
   const int brute_force_limit = options.quick ? 3162 : 10000;
   const double window = options.quick ? 0.03 : 0.1;
-  std::vector<std::unique_ptr<BroadPhase>> methods;
-  methods.push_back(std::make_unique<BruteForce>());
-  methods.push_back(std::make_unique<SweepAndPrune>());
-  methods.push_back(std::make_unique<UniformGrid>());
-  methods.push_back(std::make_unique<Bvh>());
-  methods.push_back(std::make_unique<KdTree>());
+  const std::vector<std::unique_ptr<BroadPhase>> methods = allBroadPhases();
   // The benchmark's colours for the same methods (bench/04_collision/bench.cpp), so that the
   // two charts read alike.
   const char* colours[] = {"#000000", "#e41a1c", "#377eb8", "#4daf4a", "#984ea3"};

@@ -24,6 +24,7 @@
 /// and throw InvalidInput for a box with min > max or a non-finite coordinate.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -276,5 +277,8 @@ class KdTree final : public BroadPhase {
   std::vector<double> keys_;   ///< scratch for the median
   long leaves_ = 0;
 };
+
+/// One object of every broad phase, brute force first, in the order the charts and tables use.
+std::vector<std::unique_ptr<BroadPhase>> allBroadPhases();
 
 }  // namespace physlab

@@ -124,4 +124,14 @@ int Bvh::depth() const {
   return deepest;
 }
 
+std::vector<std::unique_ptr<BroadPhase>> allBroadPhases() {
+  std::vector<std::unique_ptr<BroadPhase>> methods;
+  methods.push_back(std::make_unique<BruteForce>());
+  methods.push_back(std::make_unique<SweepAndPrune>());
+  methods.push_back(std::make_unique<UniformGrid>());
+  methods.push_back(std::make_unique<Bvh>());
+  methods.push_back(std::make_unique<KdTree>());
+  return methods;
+}
+
 }  // namespace physlab
