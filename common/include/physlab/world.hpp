@@ -1,0 +1,320 @@
+/// \file world.hpp
+/// \brief Lab 5: impulse-based collision response, and the World that steps rigid bodies with it.
+///
+/// The lecture's model of a collision: when two bodies touch at a point \f$p\f$ with normal
+/// \f$\hat n\f$ (from B to A) and approach each other, an impulse \f$J = j \hat n\f$ changes their
+/// velocities instantly so that the relative normal velocity of the touching points flips and
+/// shrinks by the coefficient of restitution \f$\epsilon\f$:
+/// \f[ v_{rel}^+ = -\epsilon\, v_{rel}^-, \qquad v_{rel} = \hat n \cdot (\dot p_A - \dot p_B), \qquad
+///     \dot p_A = v_A + \omega_A \times r_A,\ r_A = p - x_A. \f]
+/// The magnitude that achieves it is
+/// \f[ j = \frac{-(1 + \epsilon)\, v_{rel}^-}{m_A^{-1} + m_B^{-1}
+///        + \hat n \cdot (I_A^{-1} (r_A \times \hat n)) \times r_A
+///        + \hat n \cdot (I_B^{-1} (r_B \times \hat n)) \times r_B}, \qquad I^{-1} = R\, I_{body}^{-1} R^T, \f]
+/// and applying it changes the momenta by \f$\Delta P_A = J,\ \Delta L_A = r_A \times J\f$ and
+/// \f$\Delta P_B = -J,\ \Delta L_B = -r_B \times J\f$. A fixed body has \f$m^{-1} = 0\f$ and
+/// \f$I^{-1} = 0\f$, so the same formulas leave it at rest.
+///
+/// Glossary (the lecture's symbols, used as names in the code):
+/// | symbol | code | meaning |
+/// |---|---|---|
+/// | \f$v_{rel}\f$ | `v_rel` | relative normal velocity at a point, < 0 approaching [m/s] |
+/// | \f$j\f$ | `j` | normal impulse magnitude [N s] |
+/// | \f$\epsilon\f$ | `epsilon` | coefficient of restitution, in [0, 1] |
+/// | \f$\mu\f$ | `mu` | Coulomb friction coefficient, >= 0 |
+/// | \f$r_A, r_B\f$ | `r_a`, `r_b` | contact point relative to each centre of mass, world frame [m] |
+/// | \f$I^{-1}\f$ | `I_inv_world` | world inverse inertia \f$R I_{body}^{-1} R^T\f$ [1/(kg m^2)] |
+/// | \f$K\f$ | `K` | inverse effective mass along a direction (the denominator of j) [1/kg] |
+///
+/// A step of World runs the phases of the lecture's pipeline, one call each: apply forces ->
+/// broad phase -> narrow phase (manifolds) -> classify contacts by \f$v_{rel}\f$ (colliding,
+/// resting, separating) -> respond -> integrate -> diagnostics. Lab 6 adds a resting-contact
+/// phase that will take the points classified as resting; in Lab 5 the impulse solver handles
+/// them too, with \f$\epsilon = 0\f$.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "physlab/broadphase.hpp"
+#include "physlab/collision.hpp"
+#include "physlab/math.hpp"
+
+namespace physlab {
+
+// ---------------------------------------------------------------------------------------------
+/// \name Description, state and settings
+///@{
+
+/// The constant description of one body of a World.
+struct BodyDescription {
+  Shape shape = Sphere(1.0);         ///< the shape, body frame (a Plane is world frame and must be fixed)
+  double mass = 1.0;                 ///< m [kg] (ignored when fixed)
+  Mat3 inertia_body = Mat3::Identity();  ///< \f$I_{body}\f$, body frame, about the centre of mass [kg m^2]
+  double epsilon = 0.5;              ///< coefficient of restitution, in [0, 1]
+  double mu = 0.0;                   ///< Coulomb friction coefficient, >= 0
+  bool fixed = false;                ///< a fixed body never moves: \f$m^{-1} = 0\f$, \f$I^{-1} = 0\f$
+
+  /// A solid sphere of mass `mass` [kg] and radius `radius` [m].
+  static BodyDescription sphere(double mass, double radius, double epsilon, double mu);
+  /// A solid box of mass `mass` [kg] and half extents `half_extents` [m].
+  static BodyDescription box(double mass, const Vec3& half_extents, double epsilon, double mu);
+  /// A fixed half-space \f$\hat n \cdot p \le d\f$ (the ground is plane(Vec3::UnitZ(), 0, ...)).
+  static BodyDescription plane(const Vec3& normal, double offset, double epsilon, double mu);
+  /// A fixed box (a wall or the floor of a container).
+  static BodyDescription fixedBox(const Vec3& half_extents, double epsilon, double mu);
+};
+
+/// The state of one body, as in Lab 3, world frame.
+struct BodyState {
+  Vec3 x = Vec3::Zero();      ///< centre of mass [m]
+  Quat q = Quat::Identity();  ///< orientation, unit quaternion: body -> world
+  Vec3 P = Vec3::Zero();      ///< linear momentum [kg m/s]
+  Vec3 L = Vec3::Zero();      ///< angular momentum about the centre of mass [kg m^2/s]
+};
+
+/// How World::step() responds to contacts.
+enum class ResponseMethod {
+  Sequential,    ///< one point at a time, each approaching point gets its full impulse, repeated
+  Simultaneous,  ///< every point from the same velocities at once (Jacobi), accumulated and clamped
+  Penalty,       ///< a spring and damper at each touching point, no impulses
+};
+
+/// "sequential", "simultaneous" or "penalty".
+const char* responseMethodName(ResponseMethod method);
+
+/// Every knob of World::step(), printed with every run (no statics anywhere).
+struct Settings {
+  ResponseMethod method = ResponseMethod::Sequential;  ///< how contacts are answered
+  int iterations = 50;                ///< largest number of sweeps over the contact points
+  double tolerance = 1e-9;            ///< approaching means \f$v_{rel}\f$ < -tolerance; solvers stop when no velocity changes more [m/s]
+  double restitution_threshold = 0.05;  ///< points with \f$|v_{rel}|\f$ below this are resting: \f$\epsilon\f$ = 0 [m/s]
+  bool warm_start = true;             ///< simultaneous solver: start from last step's impulses (same feature ids)
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81);  ///< uniform gravitational acceleration, world frame [m/s^2]
+  double penalty_k = 1e4;             ///< penalty spring stiffness k [N/m]
+  double penalty_d = 0.0;             ///< penalty damping d [N s/m]
+  bool use_broad_phase = true;        ///< sort and sweep before the narrow phase (else every pair)
+
+  /// One line naming every setting and its value.
+  std::string toString() const;
+};
+/// Writes Settings::toString().
+std::ostream& operator<<(std::ostream& out, const Settings& settings);
+///@}
+
+// ---------------------------------------------------------------------------------------------
+/// \name Contacts
+///@{
+
+/// What the sign of \f$v_{rel}\f$ says about a contact point (lecture 002).
+enum class ContactKind {
+  Colliding,   ///< \f$v_{rel} < -\f$ threshold: the bodies approach, an impulse is needed
+  Resting,     ///< \f$|v_{rel}| \le\f$ threshold: touching, neither approaching nor leaving
+  Separating,  ///< \f$v_{rel} >\f$ threshold: the bodies move apart, nothing to do
+};
+
+/// The solver's view of one body during the response: velocities and inverse mass properties,
+/// world frame. A fixed body has inv_mass = 0, I_inv_world = 0 and zero velocities.
+struct ContactBody {
+  Vec3 x = Vec3::Zero();                ///< centre of mass [m]
+  Vec3 v = Vec3::Zero();                ///< velocity of the centre [m/s]
+  Vec3 omega = Vec3::Zero();            ///< angular velocity [rad/s]
+  double inv_mass = 0.0;                ///< \f$m^{-1}\f$ [1/kg], 0 when fixed
+  Mat3 I_inv_world = Mat3::Zero();      ///< \f$R I_{body}^{-1} R^T\f$ [1/(kg m^2)], 0 when fixed
+};
+
+/// One contact point between bodies `a` and `b` (indices into the solver's bodies).
+struct Contact {
+  int a = 0;                      ///< body A (the normal points towards it)
+  int b = 0;                      ///< body B
+  Vec3 p = Vec3::Zero();          ///< the point (manifold midpoint), world frame [m]
+  Vec3 n = Vec3::UnitZ();         ///< unit normal from B to A, world frame
+  double depth = 0.0;             ///< penetration, > 0 overlapping [m]
+  std::uint32_t id = 0;           ///< feature id (Lab 4), for warm starting
+  double epsilon = 0.0;           ///< restitution of the pair, min of the two (solvers use 0 below the threshold)
+  double mu = 0.0;                ///< friction of the pair, \f$\sqrt{\mu_A \mu_B}\f$
+  double v_rel_minus = 0.0;       ///< \f$v_{rel}^-\f$ when classified (before the response) [m/s]
+  ContactKind kind = ContactKind::Separating;  ///< what classify found
+  double j = 0.0;                 ///< accumulated normal impulse, >= 0 [N s]
+  Vec3 j_t = Vec3::Zero();        ///< accumulated friction impulse, tangent plane, \f$|j_t| \le \mu j\f$ [N s]
+};
+///@}
+
+// ---------------------------------------------------------------------------------------------
+/// \name Student functions (Lab 5)
+///@{
+
+/// A particle of mass m hitting a fixed plane with unit normal n: when it approaches
+/// (\f$v^- \cdot \hat n < 0\f$), \f$v^+ = v^- + \frac{j}{m}\hat n\f$ with
+/// \f$j = -(1 + \epsilon)\, m\, v^- \cdot \hat n\f$; otherwise \f$v^+ = v^-\f$ [m/s].
+/// Handout: Lab 5, section 1.
+Vec3 particlePlaneResponse(double m, const Vec3& v_minus, const Vec3& n, double epsilon);
+
+/// The world inverse inertia \f$I^{-1} = R\, I_{body}^{-1} R^T\f$ with \f$R = R(q)\f$ (q normalised).
+/// Handout: Lab 5, section 2.
+Mat3 inverseInertiaWorld(const Mat3& I_body_inv, const Quat& q);
+
+/// The relative velocity of the touching points, \f$\dot p_A - \dot p_B\f$ with
+/// \f$\dot p = v + \omega \times (p - x)\f$ [m/s]. Handout: Lab 5, section 2.
+Vec3 relativeVelocity(const ContactBody& A, const ContactBody& B, const Vec3& p);
+
+/// The inverse effective mass along the unit direction d at p, the denominator of j:
+/// \f$K = m_A^{-1} + m_B^{-1} + d \cdot (I_A^{-1}(r_A \times d)) \times r_A + d \cdot (I_B^{-1}(r_B \times d)) \times r_B\f$
+/// [1/kg]. Handout: Lab 5, section 2.
+double inverseEffectiveMass(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& d);
+
+/// The lecture's impulse magnitude \f$j = -(1 + \epsilon)\, v_{rel}^- / K\f$ with
+/// \f$v_{rel}^- = \hat n \cdot (\dot p_A - \dot p_B)\f$ now [N s]. (Negative when the points separate:
+/// the caller decides whether to apply it.) Handout: Lab 5, section 2.
+double impulseMagnitude(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double epsilon);
+
+/// Applies the impulse J at p to A and -J to B: \f$\Delta v_A = m_A^{-1} J\f$,
+/// \f$\Delta \omega_A = I_A^{-1}(r_A \times J)\f$, and the opposite for B (fixed bodies: zero
+/// inverses, no change). Handout: Lab 5, section 3.
+void applyImpulse(ContactBody& A, ContactBody& B, const Vec3& p, const Vec3& J);
+
+/// Coulomb friction at p: the impulse in the tangent plane (normal n) that stops the sliding
+/// velocity \f$v_t\f$ of A relative to B, \f$-\frac{|v_t|}{K_t}\hat t\f$ with \f$\hat t = v_t / |v_t|\f$
+/// and \f$K_t\f$ = inverseEffectiveMass() along \f$\hat t\f$, shortened to length `j_max` when
+/// longer (sliding; \f$j_{max} = \mu j\f$), kept when shorter (sticking). Zero when not sliding.
+/// [N s] Handout: Lab 5, section 4.
+Vec3 frictionImpulse(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double j_max);
+
+/// Sequential impulses (collision propagation): sweeps over the contacts in order; a point that
+/// approaches (\f$v_{rel} <\f$ -settings.tolerance) receives its full impulse
+/// impulseMagnitude() with the *current* \f$v_{rel}\f$ and its epsilon, added to its accumulated
+/// j, and friction clamped so that the accumulated \f$|j_t| \le \mu j\f$. Points approaching slower
+/// than settings.restitution_threshold use \f$\epsilon = 0\f$. Repeats until a sweep finds no
+/// approaching point and changes no sliding speed by more than settings.tolerance, or after
+/// settings.iterations sweeps. Returns the sweeps made.
+/// Handout: Lab 5, section 5.
+int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings);
+
+/// Simultaneous impulses (Jacobi): each sweep computes every point's correction from the same
+/// velocities, aiming at \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$ (v_rel_minus of the contact), with
+/// accumulated impulses clamped to \f$j \ge 0\f$ and \f$|j_t| \le \mu j\f$ (a point's friction sees its
+/// own normal correction), then applies them all,
+/// each scaled by 1/(the largest number of contacts on either of its bodies) so that a body
+/// resting on several points does not receive several full corrections. Contacts that arrive with
+/// j, j_t from the last step (warm starting) apply them first. Repeats until no correction exceeds
+/// settings.tolerance (as a velocity change) or settings.iterations sweeps. Returns the sweeps.
+/// Handout: Lab 5, section 6.
+int solveSimultaneous(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings);
+
+/// The penalty force on A at a touching point (lecture 001): a spring of stiffness k on the depth
+/// and a damper d on the normal velocity, \f$F = \max(0,\ k\, depth - d\, v_{rel})\, \hat n\f$ (never pulling)
+/// [N]. Handout: Lab 5, section 7.
+Vec3 penaltyForce(double depth, double v_rel, const Vec3& n, double k, double d);
+///@}
+
+// ---------------------------------------------------------------------------------------------
+/// \name World
+///@{
+
+/// What World::step() measures after each step.
+struct Diagnostics {
+  double kinetic_energy = 0.0;      ///< \f$\sum \frac12 m |v|^2 + \frac12 \omega \cdot L\f$, moving bodies [J]
+  double potential_energy = 0.0;    ///< \f$-\sum m\, g \cdot x\f$, moving bodies [J]
+  Vec3 linear_momentum = Vec3::Zero();   ///< \f$\sum P\f$, moving bodies [kg m/s]
+  Vec3 angular_momentum = Vec3::Zero();  ///< \f$\sum x \times P + L\f$ about the origin [kg m^2/s]
+  double max_penetration = 0.0;     ///< largest contact depth found this step [m]
+  int contacts = 0;                 ///< contact points found this step
+  int colliding = 0;                ///< of which colliding
+  int resting = 0;                  ///< of which resting
+  int iterations = 0;               ///< solver sweeps this step
+};
+
+/// Seconds spent in each phase since the World was made (or resetTimers()).
+struct PhaseTimes {
+  double forces = 0.0;       ///< apply forces [s]
+  double broad_phase = 0.0;  ///< candidate pairs [s]
+  double narrow_phase = 0.0; ///< manifolds [s]
+  double classify = 0.0;     ///< v_rel and kinds [s]
+  double respond = 0.0;      ///< impulses or penalty forces [s]
+  double integrate = 0.0;    ///< positions and orientations [s]
+  double diagnostics = 0.0;  ///< energies and momenta [s]
+};
+
+/// A set of bodies and their initial states (scenes below).
+struct Scene {
+  std::vector<BodyDescription> bodies;  ///< constant descriptions
+  std::vector<BodyState> states;        ///< initial states, one per body
+};
+
+/// Rigid bodies with impulse-based collision response.
+class World {
+ public:
+  /// Validates every description, state and setting (InvalidInput naming the body and field).
+  World(Scene scene, Settings settings = {});
+  /// One step of size h [s] (h > 0): the phases of the file's pipeline, in order.
+  void step(double h);
+
+  const std::vector<BodyDescription>& bodies() const { return bodies_; }  ///< the descriptions
+  const std::vector<BodyState>& states() const { return states_; }        ///< the states now
+  const Settings& settings() const { return settings_; }                  ///< the settings
+  /// Replaces body i's state (validated).
+  void setState(int i, const BodyState& state);
+  /// Velocity of body i's centre, \f$P/m\f$ (zero when fixed) [m/s].
+  Vec3 velocity(int i) const;
+  /// Angular velocity of body i, \f$I^{-1} L\f$ (zero when fixed) [rad/s].
+  Vec3 angularVelocity(int i) const;
+  /// The contacts of the last step, as the solver left them.
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  const Diagnostics& diagnostics() const { return diagnostics_; }  ///< of the last step
+  const PhaseTimes& times() const { return times_; }               ///< accumulated phase times
+  void resetTimers() { times_ = PhaseTimes{}; }                    ///< zero the phase times
+  double time() const { return time_; }                            ///< simulated time [s]
+
+ private:
+  void applyForces(double h);
+  void findCandidatePairs();
+  void computeContacts();
+  void classifyContacts();
+  void respond(double h);
+  void integrate(double h);
+  void computeDiagnostics();
+  void loadContactBodies();
+  void storeContactBodies();
+  void applyPenaltyForces(double h);
+
+  std::vector<BodyDescription> bodies_;
+  std::vector<BodyState> states_;
+  Settings settings_;
+  std::vector<ContactBody> contact_bodies_;
+  std::vector<BoxPair> pairs_;
+  std::vector<Contact> contacts_;
+  std::map<std::tuple<int, int, std::uint32_t>, std::pair<double, Vec3>> last_impulses_;
+  std::vector<int> bounded_, planes_;
+  std::vector<Aabb> boxes_;
+  std::unique_ptr<BroadPhase> broad_phase_;
+  Diagnostics diagnostics_;
+  PhaseTimes times_;
+  double time_ = 0.0;
+};
+///@}
+
+// ---------------------------------------------------------------------------------------------
+/// \name Scenes for tests and demos
+/// Ground: the plane z <= 0. Gravity comes from Settings.
+///@{
+
+/// A sphere (mass 1 kg, radius 0.1 m) whose lowest point is `height` [m] above the ground, at rest.
+Scene bouncingBall(double height, double epsilon);
+/// n touching spheres (1 kg, radius 0.1 m) in a row along x on no ground, epsilon 1, the first
+/// moving towards the others at v0 [m/s]. (Use zero gravity.)
+Scene newtonsCradle(int n, double v0);
+/// A box (1 kg, 0.4 x 0.4 x 0.2 m) resting on the ground, sliding along x at v0 [m/s], with mu.
+Scene slidingBox(double v0, double mu);
+/// A sphere (1 kg, radius 0.1 m) touching the ground, thrown along x at v0 [m/s] without spin.
+Scene thrownSphere(double v0, double mu);
+/// A container (ground plus four fixed walls, 2 x 2 m) and `count` boxes and spheres above it,
+/// placed on a grid without overlap with small random velocities; the same seed gives the same rain.
+Scene boxRain(int count, std::uint64_t seed);
+///@}
+
+}  // namespace physlab

@@ -1,0 +1,357 @@
+// Lab 5 framework: the World's step, one call per phase of the lecture's pipeline, with input
+// validation, diagnostics and per-phase timers. The response itself is the students' code.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ostream>
+#include <sstream>
+
+#include "physlab/error.hpp"
+#include "physlab/rigid.hpp"
+#include "physlab/world.hpp"
+
+namespace physlab {
+
+namespace {
+
+// Adds the seconds since `start` to `counter` when it goes out of scope.
+class PhaseTimer {
+ public:
+  explicit PhaseTimer(double& counter) : counter_(counter), start_(std::chrono::steady_clock::now()) {}
+  ~PhaseTimer() { counter_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  PhaseTimer(const PhaseTimer&) = delete;
+  PhaseTimer& operator=(const PhaseTimer&) = delete;
+
+ private:
+  double& counter_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+bool isPlane(const BodyDescription& body) { return std::holds_alternative<Plane>(body.shape); }
+
+void validateBody(const BodyDescription& body, int i) {
+  const std::string name = "body " + std::to_string(i);
+  if (!(std::isfinite(body.epsilon) && body.epsilon >= 0.0 && body.epsilon <= 1.0)) {
+    throw InvalidInput(name + " restitution epsilon must be in [0, 1], got " + std::to_string(body.epsilon));
+  }
+  requireNonNegative(body.mu, name + " friction mu");
+  if (isPlane(body) && !body.fixed) throw InvalidInput(name + " is a plane and must be fixed");
+  if (!body.fixed) {
+    requirePositive(body.mass, name + " mass");
+    RigidBody(body.mass, body.inertia_body);  // validates the inertia tensor (InvalidInput)
+  }
+}
+
+void validateState(const BodyState& state, int i) {
+  const std::string name = "body " + std::to_string(i) + " state";
+  requireFinite(state.x, name + " position x");
+  requireFinite(state.q.coeffs(), name + " orientation q");
+  if (state.q.norm() == 0.0) throw InvalidInput(name + " orientation quaternion is zero");
+  requireFinite(state.P, name + " linear momentum P");
+  requireFinite(state.L, name + " angular momentum L");
+}
+
+void validateSettings(const Settings& s) {
+  if (s.iterations < 1) throw InvalidInput("settings iterations must be at least 1");
+  requireNonNegative(s.tolerance, "settings tolerance");
+  requireNonNegative(s.restitution_threshold, "settings restitution threshold");
+  requireFinite(s.gravity, "settings gravity");
+  requirePositive(s.penalty_k, "settings penalty stiffness k");
+  requireNonNegative(s.penalty_d, "settings penalty damping d");
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Descriptions and settings
+
+BodyDescription BodyDescription::sphere(double mass, double radius, double epsilon, double mu) {
+  BodyDescription body;
+  body.shape = Sphere(radius);
+  body.mass = mass;
+  body.inertia_body = sphereInertia(mass, radius);
+  body.epsilon = epsilon;
+  body.mu = mu;
+  return body;
+}
+
+BodyDescription BodyDescription::box(double mass, const Vec3& half_extents, double epsilon, double mu) {
+  BodyDescription body;
+  body.shape = Box(half_extents);
+  body.mass = mass;
+  body.inertia_body = boxInertia(mass, 2.0 * half_extents);
+  body.epsilon = epsilon;
+  body.mu = mu;
+  return body;
+}
+
+BodyDescription BodyDescription::plane(const Vec3& normal, double offset, double epsilon, double mu) {
+  BodyDescription body;
+  body.shape = Plane(normal, offset);
+  body.epsilon = epsilon;
+  body.mu = mu;
+  body.fixed = true;
+  return body;
+}
+
+BodyDescription BodyDescription::fixedBox(const Vec3& half_extents, double epsilon, double mu) {
+  BodyDescription body = box(1.0, half_extents, epsilon, mu);
+  body.fixed = true;
+  return body;
+}
+
+const char* responseMethodName(ResponseMethod method) {
+  switch (method) {
+    case ResponseMethod::Sequential: return "sequential";
+    case ResponseMethod::Simultaneous: return "simultaneous";
+    case ResponseMethod::Penalty: return "penalty";
+  }
+  return "unknown";
+}
+
+std::string Settings::toString() const {
+  std::ostringstream out;
+  out << "method=" << responseMethodName(method) << " iterations=" << iterations << " tolerance=" << tolerance
+      << " restitution_threshold=" << restitution_threshold << " warm_start=" << (warm_start ? "on" : "off")
+      << " gravity=(" << gravity.x() << ", " << gravity.y() << ", " << gravity.z() << ")"
+      << " penalty_k=" << penalty_k << " penalty_d=" << penalty_d
+      << " broad_phase=" << (use_broad_phase ? "sort and sweep" : "all pairs");
+  return out.str();
+}
+
+std::ostream& operator<<(std::ostream& out, const Settings& settings) { return out << settings.toString(); }
+
+// ---------------------------------------------------------------------------------------------
+// World
+
+World::World(Scene scene, Settings settings)
+    : bodies_(std::move(scene.bodies)), states_(std::move(scene.states)), settings_(settings) {
+  requireSize(static_cast<Index>(states_.size()), static_cast<Index>(bodies_.size()), "world states");
+  validateSettings(settings_);
+  for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) {
+    validateBody(bodies_[i], i);
+    validateState(states_[i], i);
+    states_[i].q.normalize();
+    if (bodies_[i].fixed) states_[i].P = states_[i].L = Vec3::Zero();
+    (isPlane(bodies_[i]) ? planes_ : bounded_).push_back(i);
+  }
+  broad_phase_ = std::make_unique<SweepAndPrune>();
+}
+
+void World::setState(int i, const BodyState& state) {
+  if (i < 0 || i >= static_cast<int>(states_.size())) throw InvalidInput("body index " + std::to_string(i) + " out of range");
+  validateState(state, i);
+  states_[i] = state;
+  states_[i].q.normalize();
+  if (bodies_[i].fixed) states_[i].P = states_[i].L = Vec3::Zero();
+}
+
+Vec3 World::velocity(int i) const {
+  return bodies_.at(i).fixed ? Vec3::Zero() : Vec3(states_.at(i).P / bodies_[i].mass);
+}
+
+Vec3 World::angularVelocity(int i) const {
+  if (bodies_.at(i).fixed) return Vec3::Zero();
+  const Mat3 R = states_[i].q.toRotationMatrix();
+  return R * bodies_[i].inertia_body.inverse() * R.transpose() * states_[i].L;
+}
+
+void World::step(double h) {
+  requirePositive(h, "step size h");
+  // Gravity: v += g h on every moving body
+  applyForces(h);
+  // Candidate pairs whose bounding boxes overlap, plus every moving body against every plane
+  findCandidatePairs();
+  // Contact manifolds of the candidates, as contact points
+  computeContacts();
+  // v_rel at each point: colliding, resting or separating
+  classifyContacts();
+  // Impulses (or penalty forces) that stop the approach
+  respond(h);
+  // Positions and orientations with the new velocities
+  integrate(h);
+  // Energies, momenta, penetration
+  computeDiagnostics();
+  time_ += h;
+}
+
+void World::applyForces(double h) {
+  if (settings_.gravity.isZero()) return;  // a scene without gravity skips the phase
+  PhaseTimer timer(times_.forces);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (!bodies_[i].fixed) states_[i].P += h * bodies_[i].mass * settings_.gravity;
+  }
+}
+
+void World::findCandidatePairs() {
+  PhaseTimer timer(times_.broad_phase);
+  pairs_.clear();
+  const int n = static_cast<int>(bounded_.size());
+  if (settings_.use_broad_phase && n >= 2) {
+    boxes_.resize(n);
+    for (int k = 0; k < n; ++k) {
+      const BodyState& s = states_[bounded_[k]];
+      boxes_[k] = aabb(bodies_[bounded_[k]].shape, Pose{s.x, s.q});
+    }
+    PairList found;
+    broad_phase_->findPairs(boxes_, found);
+    for (const BoxPair& pair : found) pairs_.push_back({bounded_[pair.first], bounded_[pair.second]});
+  } else {
+    for (int k = 0; k < n; ++k) {
+      for (int l = k + 1; l < n; ++l) pairs_.push_back({bounded_[k], bounded_[l]});
+    }
+  }
+  // Two fixed bodies never need a response
+  pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
+                              [&](const BoxPair& p) { return bodies_[p.first].fixed && bodies_[p.second].fixed; }),
+               pairs_.end());
+  for (int plane : planes_) {
+    for (int body : bounded_) {
+      if (!bodies_[body].fixed) pairs_.push_back({body, plane});
+    }
+  }
+}
+
+void World::computeContacts() {
+  if (pairs_.empty() && contacts_.empty()) return;  // nothing can touch: skip the phase
+  PhaseTimer timer(times_.narrow_phase);
+  // Keep the last step's impulses by (A, B, feature id) for warm starting
+  last_impulses_.clear();
+  for (const Contact& c : contacts_) last_impulses_[{c.a, c.b, c.id}] = {c.j, c.j_t};
+  contacts_.clear();
+  for (const BoxPair& pair : pairs_) {
+    const int a = pair.first, b = pair.second;
+    const Manifold m = collide(bodies_[a].shape, Pose{states_[a].x, states_[a].q}, bodies_[b].shape,
+                               Pose{states_[b].x, states_[b].q});
+    for (int k = 0; k < m.count; ++k) {
+      Contact c;
+      c.a = a;
+      c.b = b;
+      c.p = m.points[k].position;
+      c.n = m.normal;
+      c.depth = m.points[k].depth;
+      c.id = m.points[k].id;
+      // The less bouncy body sets the pair's restitution; friction is the geometric mean
+      c.epsilon = std::min(bodies_[a].epsilon, bodies_[b].epsilon);
+      c.mu = std::sqrt(bodies_[a].mu * bodies_[b].mu);
+      contacts_.push_back(c);
+    }
+  }
+}
+
+void World::loadContactBodies() {
+  contact_bodies_.resize(bodies_.size());
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    ContactBody& cb = contact_bodies_[i];
+    cb.x = states_[i].x;
+    if (bodies_[i].fixed) {
+      cb.v = cb.omega = Vec3::Zero();
+      cb.inv_mass = 0.0;
+      cb.I_inv_world = Mat3::Zero();
+    } else {
+      const Mat3 R = states_[i].q.toRotationMatrix();
+      cb.inv_mass = 1.0 / bodies_[i].mass;
+      cb.I_inv_world = R * bodies_[i].inertia_body.inverse() * R.transpose();
+      cb.v = states_[i].P * cb.inv_mass;
+      cb.omega = cb.I_inv_world * states_[i].L;
+    }
+  }
+}
+
+void World::storeContactBodies() {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_[i].fixed) continue;
+    const Mat3 R = states_[i].q.toRotationMatrix();
+    states_[i].P = bodies_[i].mass * contact_bodies_[i].v;
+    states_[i].L = R * bodies_[i].inertia_body * R.transpose() * contact_bodies_[i].omega;
+  }
+}
+
+void World::classifyContacts() {
+  if (contacts_.empty()) return;
+  PhaseTimer timer(times_.classify);
+  loadContactBodies();
+  for (Contact& c : contacts_) {
+    // v_rel = n . (pdot_A - pdot_B), computed here so the framework never depends on student code
+    const ContactBody &A = contact_bodies_[c.a], &B = contact_bodies_[c.b];
+    const Vec3 pdot_a = A.v + A.omega.cross(c.p - A.x), pdot_b = B.v + B.omega.cross(c.p - B.x);
+    c.v_rel_minus = c.n.dot(pdot_a - pdot_b);
+    if (c.v_rel_minus < -settings_.restitution_threshold) {
+      c.kind = ContactKind::Colliding;
+    } else if (c.v_rel_minus <= settings_.restitution_threshold) {
+      c.kind = ContactKind::Resting;
+    } else {
+      c.kind = ContactKind::Separating;
+    }
+    c.j = 0.0;
+    c.j_t = Vec3::Zero();
+    if (settings_.warm_start && settings_.method == ResponseMethod::Simultaneous) {
+      const auto last = last_impulses_.find({c.a, c.b, c.id});
+      if (last != last_impulses_.end()) std::tie(c.j, c.j_t) = last->second;
+    }
+  }
+}
+
+void World::respond(double h) {
+  diagnostics_.iterations = 0;
+  if (contacts_.empty()) return;
+  PhaseTimer timer(times_.respond);
+  switch (settings_.method) {
+    case ResponseMethod::Sequential:
+      diagnostics_.iterations = solveSequential(contact_bodies_, contacts_, settings_);
+      break;
+    case ResponseMethod::Simultaneous:
+      diagnostics_.iterations = solveSimultaneous(contact_bodies_, contacts_, settings_);
+      break;
+    case ResponseMethod::Penalty:
+      applyPenaltyForces(h);
+      break;
+  }
+  storeContactBodies();
+}
+
+void World::applyPenaltyForces(double h) {
+  // A force F over the step is the impulse F h, applied at the contact point
+  for (Contact& c : contacts_) {
+    const Vec3 F = penaltyForce(c.depth, c.v_rel_minus, c.n, settings_.penalty_k, settings_.penalty_d);
+    c.j = F.norm() * h;
+    applyImpulse(contact_bodies_[c.a], contact_bodies_[c.b], c.p, F * h);
+  }
+}
+
+void World::integrate(double h) {
+  PhaseTimer timer(times_.integrate);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_[i].fixed) continue;
+    // Symplectic Euler: the new velocities move the body over the step
+    BodyState& s = states_[i];
+    s.x += h * s.P / bodies_[i].mass;
+    if (!s.L.isZero()) s.q = exponentialUpdate(s.q, angularVelocity(static_cast<int>(i)), h).normalized();
+  }
+}
+
+void World::computeDiagnostics() {
+  PhaseTimer timer(times_.diagnostics);
+  Diagnostics& d = diagnostics_;
+  d.kinetic_energy = d.potential_energy = 0.0;
+  d.linear_momentum = d.angular_momentum = Vec3::Zero();
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_[i].fixed) continue;
+    const BodyState& s = states_[i];
+    const Vec3 omega = angularVelocity(static_cast<int>(i));
+    d.kinetic_energy += 0.5 * s.P.squaredNorm() / bodies_[i].mass + 0.5 * omega.dot(s.L);
+    d.potential_energy -= bodies_[i].mass * settings_.gravity.dot(s.x);
+    d.linear_momentum += s.P;
+    d.angular_momentum += s.x.cross(s.P) + s.L;
+  }
+  d.contacts = static_cast<int>(contacts_.size());
+  d.colliding = d.resting = 0;
+  d.max_penetration = 0.0;
+  for (const Contact& c : contacts_) {
+    d.max_penetration = std::max(d.max_penetration, c.depth);
+    if (c.kind == ContactKind::Colliding) ++d.colliding;
+    if (c.kind == ContactKind::Resting) ++d.resting;
+  }
+}
+
+}  // namespace physlab

@@ -1,0 +1,14 @@
+// Lab 5, section 7: penalty springs at the contact points.
+#include <algorithm>
+
+#include "physlab/error.hpp"
+#include "physlab/world.hpp"
+
+namespace physlab {
+
+Vec3 penaltyForce(double depth, double v_rel, const Vec3& n, double k, double d) {
+  // Push along n with a spring on the depth and a damper on the normal velocity, never pulling
+  return std::max(0.0, k * depth - d * v_rel) * n;
+}
+
+}  // namespace physlab

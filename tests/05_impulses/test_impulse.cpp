@@ -1,0 +1,110 @@
+// Lab 5 graded tests of one impulse: the particle-plane response, the rigid impulse magnitude j
+// against the lecture's closed form, and what applying it conserves, reverses and dissipates.
+#include <cmath>
+
+#include "impulse_support.hpp"
+
+using namespace physlab;
+using namespace physlab::test;
+
+TEST_CASE("particle-plane: the normal velocity reverses and shrinks by epsilon, the tangential stays", "[lab05][pts=1]") {
+  const double m = uniform(0.1, 10.0), epsilon = uniform(0.0, 1.0);
+  const Vec3 n = randomVec3(1.0).normalized();
+  Vec3 v = randomVec3(5.0);
+  if (v.dot(n) > 0) v = -v;
+  const Vec3 v_plus = particlePlaneResponse(m, v, n, epsilon);
+  // One multiply-add per component: round-off relative to |v|.
+  CHECK(std::abs(v_plus.dot(n) + epsilon * v.dot(n)) <= 1e-12 * v.norm());
+  CHECK((v_plus - v_plus.dot(n) * n - (v - v.dot(n) * n)).norm() <= 1e-12 * v.norm());
+  // A particle leaving the plane is left alone: exactly.
+  CHECK(particlePlaneResponse(m, -v, n, epsilon) == -v);
+}
+
+TEST_CASE("rigid impulse: the world inverse inertia is R I_body^-1 R^T", "[lab05][pts=1]") {
+  const Mat3 I_body = randomInertiaTensor();
+  const Quat q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));  // not unit length
+  const Mat3 R = q.normalized().toRotationMatrix();
+  // Two 3x3 products evaluated in another order: round-off only.
+  CHECK(inverseInertiaWorld(I_body.inverse(), q).isApprox(R * I_body.inverse() * R.transpose(), 1e-12));
+}
+
+TEST_CASE("rigid impulse: j equals the lecture's closed form", "[lab05][pts=2]") {
+  const RandomPair s = randomPair();
+  const double epsilon = uniform(0.0, 1.0);
+  const Vec3 r_a = s.p - s.A.x, r_b = s.p - s.B.x, n = s.n;
+  const double denominator = 1.0 / s.m_a + 1.0 / s.m_b + n.dot((s.A.I_inv_world * r_a.cross(n)).cross(r_a)) +
+                             n.dot((s.B.I_inv_world * r_b.cross(n)).cross(r_b));
+  const double j = -(1.0 + epsilon) * vRel(s) / denominator;
+  // The same formula evaluated in another order: round-off only.
+  CHECK(impulseMagnitude(s.A, s.B, s.p, s.n, epsilon) == Approx(j).epsilon(1e-10));
+  CHECK(inverseEffectiveMass(s.A, s.B, s.p, s.n) == Approx(denominator).epsilon(1e-12));
+}
+
+TEST_CASE("rigid impulse: linear and angular momentum of the pair are conserved", "[lab05][pts=2]") {
+  RandomPair s = randomPair();
+  const Vec3 P0 = linearMomentum(s), L0 = angularMomentum(s);
+  const double j = impulseMagnitude(s.A, s.B, s.p, s.n, uniform(0.0, 1.0));
+  applyImpulse(s.A, s.B, s.p, j * s.n);
+  // An equal and opposite impulse at one point: momenta change by round-off only (scale: the
+  // momenta themselves, at most ~50 kg m/s here).
+  CHECK((linearMomentum(s) - P0).norm() <= 1e-12 * (1.0 + P0.norm() + j));
+  CHECK((angularMomentum(s) - L0).norm() <= 1e-11 * (1.0 + L0.norm() + j));
+}
+
+TEST_CASE("rigid impulse: the relative normal velocity after is -epsilon times before", "[lab05][pts=2]") {
+  RandomPair s = randomPair();
+  const double epsilon = uniform(0.0, 1.0), before = vRel(s);
+  applyImpulse(s.A, s.B, s.p, impulseMagnitude(s.A, s.B, s.p, s.n, epsilon) * s.n);
+  // v_rel is linear in j: round-off relative to the speeds involved (~10 m/s).
+  CHECK(vRel(s) == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
+}
+
+TEST_CASE("rigid impulse: kinetic energy never increases, and is conserved for epsilon = 1", "[lab05][pts=2]") {
+  RandomPair s = randomPair();
+  RandomPair elastic = s;
+  const double E0 = kineticEnergy(s), epsilon = uniform(0.0, 1.0);
+  applyImpulse(s.A, s.B, s.p, impulseMagnitude(s.A, s.B, s.p, s.n, epsilon) * s.n);
+  // Energy lost is (1 - epsilon^2) j^2 K / 2 >= 0; allow round-off of the sums.
+  CHECK(kineticEnergy(s) <= E0 * (1.0 + 1e-12));
+  applyImpulse(elastic.A, elastic.B, elastic.p, impulseMagnitude(elastic.A, elastic.B, elastic.p, elastic.n, 1.0) * elastic.n);
+  // Elastic and frictionless: exactly conserved up to round-off of the sums.
+  CHECK(kineticEnergy(elastic) == Approx(E0).epsilon(1e-11));
+}
+
+TEST_CASE("rigid impulse: a fixed body takes no momentum and the other bounces with -epsilon v_n", "[lab05][pts=1]") {
+  RandomPair s = randomPair(true);
+  const double epsilon = uniform(0.0, 1.0), before = vRel(s);
+  applyImpulse(s.A, s.B, s.p, impulseMagnitude(s.A, s.B, s.p, s.n, epsilon) * s.n);
+  // Zero inverse mass and inertia: the fixed body does not move at all (exactly).
+  CHECK(s.B.v == Vec3::Zero());
+  CHECK(s.B.omega == Vec3::Zero());
+  // v_rel is linear in j: round-off relative to the speeds involved.
+  CHECK(vRel(s) == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
+}
+
+TEST_CASE("friction: below mu j the contact sticks, above it slides with |j_t| = mu j", "[lab05][pts=1]") {
+  // A sphere on the fixed ground: touching point below its centre
+  const double m = uniform(0.5, 5.0), r = uniform(0.05, 0.5);
+  ContactBody A, ground;
+  A.x = Vec3(0.0, 0.0, r);
+  A.v = Vec3(uniform(-3, 3), uniform(-3, 3), 0.0);
+  A.omega = randomVec3(2.0);
+  A.inv_mass = 1.0 / m;
+  A.I_inv_world = Mat3::Identity() / (0.4 * m * r * r);
+  const Vec3 p = Vec3::Zero(), n = Vec3::UnitZ();
+  const Vec3 v = A.v + A.omega.cross(p - A.x), v_t = v - v.dot(n) * n;
+  // Sticking: a large bound lets the impulse stop the sliding
+  ContactBody stuck = A, ground_copy = ground;
+  const Vec3 J = frictionImpulse(stuck, ground_copy, p, n, 1e6);
+  applyImpulse(stuck, ground_copy, p, J);
+  const Vec3 after = stuck.v + stuck.omega.cross(p - stuck.x);
+  // Isotropic inertia: the stopping impulse is exact, up to round-off of the speeds (~10 m/s).
+  CHECK((after - after.dot(n) * n).norm() <= 1e-12 * (1.0 + v_t.norm()));
+  CHECK(std::abs(J.dot(n)) <= 1e-12 * J.norm());  // in the tangent plane: round-off only
+  // Sliding: a small bound caps the impulse at mu j, opposite the sliding velocity
+  const double j_max = 0.1 * J.norm();
+  const Vec3 J_slide = frictionImpulse(A, ground, p, n, j_max);
+  // A vector scaled to a given length: round-off only.
+  CHECK(J_slide.norm() == Approx(j_max).epsilon(1e-12));
+  CHECK(J_slide.dot(v_t) == Approx(-j_max * v_t.norm()).epsilon(1e-12));
+}

@@ -1,0 +1,119 @@
+// Framework tests for Lab 5: bad bodies, states, settings and steps are refused with a message
+// naming them. They grade nothing (the checks live in common/), so they carry [common].
+#include <cmath>
+#include <sstream>
+
+#include "physlab/error.hpp"
+#include "physlab/world.hpp"
+#include "support.hpp"
+
+using namespace physlab;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Scene oneBall(const BodyDescription& ball) {
+  Scene scene = bouncingBall(1.0, 0.5);
+  scene.bodies[1] = ball;
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("world validation: epsilon outside [0, 1] is refused", "[common]") {
+  CHECK_THROWS_WITH(World(oneBall(BodyDescription::sphere(1.0, 0.1, 1.5, 0.0))), Contains("body 1 restitution epsilon"));
+  CHECK_THROWS_WITH(World(oneBall(BodyDescription::sphere(1.0, 0.1, -0.1, 0.0))), Contains("body 1 restitution epsilon"));
+  CHECK_THROWS_AS(World(oneBall(BodyDescription::sphere(1.0, 0.1, std::nan(""), 0.0))), InvalidInput);
+  CHECK_NOTHROW(World(oneBall(BodyDescription::sphere(1.0, 0.1, 1.0, 0.0))));
+}
+
+TEST_CASE("world validation: negative friction is refused", "[common]") {
+  CHECK_THROWS_WITH(World(oneBall(BodyDescription::sphere(1.0, 0.1, 0.5, -0.2))), Contains("body 1 friction mu"));
+}
+
+TEST_CASE("world validation: zero or negative mass on a moving body is refused", "[common]") {
+  BodyDescription ball = BodyDescription::sphere(1.0, 0.1, 0.5, 0.0);
+  ball.mass = 0.0;
+  CHECK_THROWS_WITH(World(oneBall(ball)), Contains("body 1 mass"));
+  ball.mass = -2.0;
+  CHECK_THROWS_WITH(World(oneBall(ball)), Contains("body 1 mass"));
+  ball.fixed = true;  // a fixed body's mass is never used
+  CHECK_NOTHROW(World(oneBall(ball)));
+  BodyDescription ground = BodyDescription::plane(Vec3::UnitZ(), 0.0, 0.5, 0.0);
+  ground.fixed = false;
+  Scene scene = bouncingBall(1.0, 0.5);
+  scene.bodies[0] = ground;
+  CHECK_THROWS_WITH(World(scene), Contains("body 0 is a plane and must be fixed"));
+}
+
+TEST_CASE("world validation: a NaN in a state is refused", "[common]") {
+  Scene scene = bouncingBall(1.0, 0.5);
+  scene.states[1].P.y() = std::nan("");
+  CHECK_THROWS_WITH(World(scene), Contains("body 1 state linear momentum P"));
+  World world(bouncingBall(1.0, 0.5));
+  BodyState bad = world.states()[1];
+  bad.x.z() = std::nan("");
+  CHECK_THROWS_WITH(world.setState(1, bad), Contains("body 1 state position x"));
+  bad = world.states()[1];
+  bad.q = Quat(0, 0, 0, 0);
+  CHECK_THROWS_WITH(world.setState(1, bad), Contains("quaternion is zero"));
+}
+
+TEST_CASE("world validation: bad settings, a bad step and mismatched sizes are refused", "[common]") {
+  Settings settings;
+  settings.iterations = 0;
+  CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("iterations"));
+  settings = Settings{};
+  settings.penalty_k = 0.0;
+  CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("penalty stiffness k"));
+  World world(bouncingBall(1.0, 0.5));
+  CHECK_THROWS_WITH(world.step(0.0), Contains("step size h"));
+  CHECK_THROWS_AS(world.step(std::nan("")), InvalidInput);
+  Scene scene = bouncingBall(1.0, 0.5);
+  scene.states.pop_back();
+  CHECK_THROWS_WITH(World(scene), Contains("world states has size 1, expected 2"));
+}
+
+TEST_CASE("world settings: printed with every value", "[common]") {
+  Settings settings;
+  settings.method = ResponseMethod::Simultaneous;
+  settings.iterations = 17;
+  std::ostringstream out;
+  out << settings;
+  CHECK_THAT(out.str(), Contains("method=simultaneous") && Contains("iterations=17") && Contains("warm_start=on"));
+  CHECK(out.str() == settings.toString());
+}
+
+TEST_CASE("world: a scene without gravity or contacts skips those phases", "[common]") {
+  Scene scene;
+  scene.bodies = {BodyDescription::sphere(1.0, 0.1, 0.5, 0.0), BodyDescription::sphere(2.0, 0.1, 0.5, 0.0)};
+  scene.states.resize(2);
+  scene.states[1].x = Vec3(1.0, 0.0, 0.0);
+  scene.states[0].P = Vec3(0.0, 1.0, 0.0);  // moving parallel to the other: never touching
+  Settings settings;
+  settings.gravity = Vec3::Zero();
+  World world(scene, settings);
+  for (int n = 0; n < 100; ++n) world.step(1e-3);
+  // Skipped phases never start their timer: exactly zero.
+  CHECK(world.times().forces == 0.0);
+  CHECK(world.times().narrow_phase == 0.0);
+  CHECK(world.times().respond == 0.0);
+  CHECK(world.diagnostics().contacts == 0);
+  CHECK(world.time() == Approx(0.1).epsilon(1e-12));  // 100 sums of 1e-3: round-off
+}
+
+TEST_CASE("world diagnostics: a falling ball keeps its energy and gains momentum m g t", "[common]") {
+  Settings settings;
+  World world(bouncingBall(10.0, 0.5), settings);
+  world.step(1e-3);
+  const double E0 = world.diagnostics().kinetic_energy + world.diagnostics().potential_energy;
+  for (int n = 1; n < 1000; ++n) world.step(1e-3);
+  const Diagnostics& d = world.diagnostics();
+  // Symplectic Euler under constant gravity: the energy error stays at m g |v| h / 2 ~ 0.05 J.
+  CHECK(d.kinetic_energy + d.potential_energy == Approx(E0).margin(0.1));
+  // Gravity's impulse over 1 s (1000 steps of 1e-3): exact up to round-off of the sum.
+  CHECK(d.linear_momentum.z() == Approx(-9.81).epsilon(1e-12));
+  CHECK(d.angular_momentum.norm() <= 1e-12);  // falling straight through the origin's vertical
+  CHECK(d.contacts == 0);
+  CHECK(d.max_penetration == 0.0);
+}

@@ -1,0 +1,91 @@
+// Lab 5 hidden tests (instructor only, shown after grades are published).
+#include <cmath>
+
+#include "physlab/world.hpp"
+#include "support.hpp"
+
+using namespace physlab;
+using namespace physlab::test;
+
+namespace {
+
+// A random moving body touching a fixed one at p; the fixed one is A or B as asked.
+struct FixedPair {
+  ContactBody moving, fixed;
+  double m = 1.0;
+  Vec3 p, n;
+};
+
+FixedPair randomFixedPair() {
+  FixedPair s;
+  s.m = uniform(0.2, 5.0);
+  const Mat3 R = randomRotation();
+  const Mat3 I = R * Vec3(uniform(0.2, 2.0), uniform(0.2, 2.0), uniform(0.2, 2.0)).asDiagonal() * R.transpose();
+  s.moving.x = randomVec3(1.0);
+  s.moving.v = randomVec3(2.0);
+  s.moving.omega = randomVec3(2.0);
+  s.moving.inv_mass = 1.0 / s.m;
+  s.moving.I_inv_world = I.inverse();
+  s.fixed.x = randomVec3(1.0);
+  s.p = randomVec3(1.0);
+  s.n = randomVec3(1.0).normalized();
+  return s;
+}
+
+// Mean solver sweeps per step of a box resting on the ground, after it has settled.
+double meanSweeps(bool warm_start) {
+  Settings settings;
+  settings.method = ResponseMethod::Simultaneous;
+  settings.warm_start = warm_start;
+  settings.tolerance = 1e-6;
+  World world(slidingBox(0.0, 0.5), settings);
+  for (int n = 0; n < 200; ++n) world.step(1e-3);
+  double sweeps = 0.0;
+  for (int n = 0; n < 100; ++n) {
+    world.step(1e-3);
+    sweeps += world.diagnostics().iterations;
+  }
+  return sweeps / 100;
+}
+
+}  // namespace
+
+TEST_CASE("hidden: a fixed body as A leaves the moving B bouncing with -epsilon v_n", "[lab05][pts=1][hidden]") {
+  FixedPair s = randomFixedPair();
+  // With the fixed body as A the normal points into the moving body: it approaches when
+  // n . (0 - pdot_B) < 0
+  const Vec3 pdot = s.moving.v + s.moving.omega.cross(s.p - s.moving.x);
+  if (s.n.dot(pdot) < 0) s.n = -s.n;
+  const double epsilon = uniform(0.0, 1.0), before = -s.n.dot(pdot);
+  applyImpulse(s.fixed, s.moving, s.p, impulseMagnitude(s.fixed, s.moving, s.p, s.n, epsilon) * s.n);
+  // Zero inverses: the fixed body does not move at all (exactly).
+  CHECK(s.fixed.v == Vec3::Zero());
+  CHECK(s.fixed.omega == Vec3::Zero());
+  const double after = -s.n.dot(s.moving.v + s.moving.omega.cross(s.p - s.moving.x));
+  // v_rel is linear in j: round-off relative to the speeds involved.
+  CHECK(after == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
+}
+
+TEST_CASE("hidden: warm starting cuts the simultaneous solver's sweeps on a resting box", "[lab05][pts=1][hidden]") {
+  const double cold = meanSweeps(false), warm = meanSweeps(true);
+  INFO("sweeps per step: cold " << cold << ", warm " << warm);
+  // Last step's impulses are nearly this step's: far fewer sweeps (a factor, not a few percent).
+  CHECK(warm < 0.5 * cold);
+}
+
+TEST_CASE("hidden: the simultaneous solver bounces a ball by epsilon^2 too", "[lab05][pts=1][hidden]") {
+  const double epsilon = uniform(0.6, 0.9), H = uniform(0.5, 1.5), h = 1e-4, r = 0.1;
+  Settings settings;
+  settings.method = ResponseMethod::Simultaneous;
+  World world(bouncingBall(H, epsilon), settings);
+  double previous_vz = 0.0, apex = -1.0;
+  for (long n = 0; n < 100000 && apex < 0; ++n) {
+    world.step(h);
+    const double vz = world.velocity(1).z();
+    if (previous_vz > 0.0 && vz <= 0.0) apex = world.states()[1].x.z() - r;
+    previous_vz = vz;
+  }
+  // The impact is seen up to one step late, at up to v h below the ground, and the apex is
+  // sampled once per step: a few v h of error, v = sqrt(2 g H).
+  CHECK(apex / H == Approx(epsilon * epsilon).margin(4 * std::sqrt(2 * 9.81 * H) * h / apex));
+}
