@@ -140,8 +140,7 @@ TEST_CASE("sort and sweep: insertion sort makes one swap per inversion", "[lab04
   CHECK_SAME_PAIRS(pairs, bruteForcePairs(boxes));
 }
 
-TEST_CASE("sort and sweep: sweeps the axis of widest spread, testing exactly the pairs overlapping on it",
-          "[lab04][pts=1]") {
+TEST_CASE("sort and sweep: sweeps the axis of widest spread, testing exactly the pairs overlapping on it", "[lab04][pts=1]") {
   // Stretching the scene threefold along one axis makes the centres spread most along it,
   // far beyond the sampling noise of the other two: build must pick it.
   std::vector<Aabb> boxes = randomScene(randomCount(200, 2000), BoxSizes::Uniform);
