@@ -66,6 +66,14 @@ TEST_CASE("world validation: bad settings, a bad step and mismatched sizes are r
   settings = Settings{};
   settings.penalty_k = 0.0;
   CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("penalty stiffness k"));
+  settings = Settings{};
+  settings.position_correction = 1.5;
+  CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("position correction"));
+  settings.position_correction = std::nan("");
+  CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("position correction"));
+  settings = Settings{};
+  settings.slop = -0.001;
+  CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("slop"));
   World world(bouncingBall(1.0, 0.5));
   CHECK_THROWS_WITH(world.step(0.0), Contains("step size h"));
   CHECK_THROWS_AS(world.step(std::nan("")), InvalidInput);
@@ -80,7 +88,8 @@ TEST_CASE("world settings: printed with every value", "[common]") {
   settings.iterations = 17;
   std::ostringstream out;
   out << settings;
-  CHECK_THAT(out.str(), Contains("method=simultaneous") && Contains("iterations=17") && Contains("warm_start=on"));
+  CHECK_THAT(out.str(), Contains("method=simultaneous") && Contains("iterations=17") && Contains("warm_start=on") &&
+                            Contains("position_correction=0.2") && Contains("slop=0.005"));
   CHECK(out.str() == settings.toString());
 }
 
@@ -116,4 +125,25 @@ TEST_CASE("world diagnostics: a falling ball keeps its energy and gains momentum
   CHECK(d.angular_momentum.norm() <= 1e-12);  // falling straight through the origin's vertical
   CHECK(d.contacts == 0);
   CHECK(d.max_penetration == 0.0);
+}
+
+TEST_CASE("world position correction: an overlap beyond the slop shrinks by the set fraction per step", "[common]") {
+  // A ball sunk 5 cm into the ground, at rest and without gravity: no impulse, only the correction.
+  Scene scene = bouncingBall(0.0, 0.5);
+  scene.states[1].x.z() -= 0.05;
+  Settings settings;
+  settings.gravity = Vec3::Zero();
+  World world(scene, settings);
+  world.step(0.01);
+  // 0.2 of the 4.5 cm beyond the slop, all of it on the ball (the ground is fixed): one rounding.
+  CHECK(world.states()[1].x.z() == Approx(0.1 - 0.05 + 0.2 * 0.045).epsilon(1e-14));
+  for (int step = 0; step < 200; ++step) world.step(0.01);
+  // Geometric approach to the slop: 0.8^200 of the excess is left.
+  CHECK(world.states()[1].x.z() == Approx(0.1 - settings.slop).epsilon(1e-12));
+  settings.method = ResponseMethod::Penalty;
+  settings.penalty_k = 1e-9;
+  World penalty(scene, settings);
+  penalty.step(0.01);
+  // Penalty springs push for themselves; a spring this soft barely moves the ball in one step.
+  CHECK(penalty.states()[1].x.z() < 0.1 - 0.05 + 1e-9);
 }

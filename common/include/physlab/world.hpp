@@ -28,9 +28,12 @@
 ///
 /// A step of World runs the phases of the lecture's pipeline, one call each: apply forces ->
 /// broad phase -> narrow phase (manifolds) -> classify contacts by \f$v_{rel}\f$ (colliding,
-/// resting, separating) -> respond -> integrate -> diagnostics. Lab 6 adds a resting-contact
-/// phase that will take the points classified as resting; in Lab 5 the impulse solver handles
-/// them too, with \f$\epsilon = 0\f$.
+/// resting, separating) -> respond -> integrate -> correct positions -> diagnostics. Impulses
+/// fix velocities only, so overlap left by a step would stay for ever; the position correction
+/// moves each overlapping pair apart along its normal by Settings::position_correction times the
+/// depth beyond Settings::slop, split by inverse mass (as Box2D and Bullet do in some form). Given a RestingContactSolver
+/// (Lab 6), the respond phase hands it the points classified as resting; without one (Lab 5)
+/// the impulse solver handles them too, with \f$\epsilon = 0\f$.
 #pragma once
 
 #include <cstdint>
@@ -94,11 +97,13 @@ struct Settings {
   int iterations = 50;                ///< largest number of sweeps over the contact points
   double tolerance = 1e-9;            ///< approaching means \f$v_{rel}\f$ < -tolerance; solvers stop when no velocity changes more [m/s]
   double restitution_threshold = 0.05;  ///< points with \f$|v_{rel}|\f$ below this are resting: \f$\epsilon\f$ = 0 [m/s]
-  bool warm_start = true;             ///< simultaneous solver: start from last step's impulses (same feature ids)
+  bool warm_start = true;             ///< simultaneous solver and resting-contact solver: start from last step's impulses (same feature ids)
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);  ///< uniform gravitational acceleration, world frame [m/s^2]
   double penalty_k = 1e4;             ///< penalty spring stiffness k [N/m]
   double penalty_d = 0.0;             ///< penalty damping d [N s/m]
   bool use_broad_phase = true;        ///< sort and sweep before the narrow phase (else every pair)
+  double position_correction = 0.2;   ///< impulse methods: fraction of each pair's overlap beyond the slop removed per step by moving the bodies apart, in [0, 1] (0: off)
+  double slop = 0.005;                ///< overlap the position correction leaves alone [m]
 
   /// One line naming every setting and its value.
   std::string toString() const;
@@ -226,7 +231,7 @@ struct Diagnostics {
   int contacts = 0;                 ///< contact points found this step
   int colliding = 0;                ///< of which colliding
   int resting = 0;                  ///< of which resting
-  int iterations = 0;               ///< solver sweeps this step
+  int iterations = 0;               ///< solver sweeps this step (impulses, plus the resting solver's)
 };
 
 /// Seconds spent in each phase since the World was made (or resetTimers()).
@@ -236,7 +241,9 @@ struct PhaseTimes {
   double narrow_phase = 0.0; ///< manifolds [s]
   double classify = 0.0;     ///< v_rel and kinds [s]
   double respond = 0.0;      ///< impulses or penalty forces [s]
+  double resting = 0.0;      ///< the resting-contact solver (Lab 6) [s]
   double integrate = 0.0;    ///< positions and orientations [s]
+  double correct = 0.0;      ///< position correction [s]
   double diagnostics = 0.0;  ///< energies and momenta [s]
 };
 
@@ -246,17 +253,38 @@ struct Scene {
   std::vector<BodyState> states;        ///< initial states, one per body
 };
 
+/// What World::step() hands the resting contacts to when a scene has a resting-contact solver
+/// (Lab 6 provides them; Lab 5's World has none and answers resting points with impulses).
+class RestingContactSolver {
+ public:
+  virtual ~RestingContactSolver() = default;
+  /// One line naming the solver and its settings, printed with every run.
+  virtual std::string describe() const = 0;
+  /// Changes the velocities of `bodies` over the step h [s] so that the `resting` contacts (indices
+  /// into `contacts`) neither approach nor pull. `bodies` carry the velocities after the applied
+  /// forces (gravity, `gravity` [m/s^2]) of this step; `states` are the World's states at the
+  /// same moment (Lab 6's acceleration-level formulation needs L). Stores each point's impulse over the step in
+  /// Contact::j (and friction in Contact::j_t). Returns the solver's iterations or pivots.
+  virtual int solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const std::vector<int>& resting,
+                    const std::vector<BodyDescription>& descriptions, const std::vector<BodyState>& states,
+                    const Vec3& gravity, double h) = 0;
+};
+
 /// Rigid bodies with impulse-based collision response.
 class World {
  public:
   /// Validates every description, state and setting (InvalidInput naming the body and field).
-  World(Scene scene, Settings settings = {});
+  /// With a `resting` solver, colliding points get impulses (Settings::method) and resting points
+  /// go to it; a step without resting points never calls it.
+  World(Scene scene, Settings settings = {}, std::shared_ptr<RestingContactSolver> resting = nullptr);
   /// One step of size h [s] (h > 0): the phases of the file's pipeline, in order.
   void step(double h);
 
   const std::vector<BodyDescription>& bodies() const { return bodies_; }  ///< the descriptions
   const std::vector<BodyState>& states() const { return states_; }        ///< the states now
   const Settings& settings() const { return settings_; }                  ///< the settings
+  /// Settings::toString(), and the resting-contact solver's description when there is one.
+  std::string describe() const;
   /// Replaces body i's state (validated).
   void setState(int i, const BodyState& state);
   /// Velocity of body i's centre, \f$P/m\f$ (zero when fixed) [m/s].
@@ -276,11 +304,13 @@ class World {
   void computeContacts();
   void classifyContacts();
   void respond(double h);
+  void solveRestingContacts(double h);
   void integrate(double h);
+  void correctPositions();
   void computeDiagnostics();
   void loadContactBodies();
   void storeContactBodies();
-  void applyPenaltyForces(double h);
+  void applyPenaltyForces(std::vector<Contact>& contacts, double h);
 
   std::vector<BodyDescription> bodies_;
   std::vector<BodyState> states_;
@@ -292,6 +322,9 @@ class World {
   std::vector<int> bounded_, planes_;
   std::vector<Aabb> boxes_;
   std::unique_ptr<BroadPhase> broad_phase_;
+  std::shared_ptr<RestingContactSolver> resting_solver_;
+  std::vector<Contact> colliding_;
+  std::vector<int> resting_;
   Diagnostics diagnostics_;
   PhaseTimes times_;
   double time_ = 0.0;

@@ -56,6 +56,10 @@ void validateSettings(const Settings& s) {
   requireNonNegative(s.tolerance, "settings tolerance");
   requireNonNegative(s.restitution_threshold, "settings restitution threshold");
   requireFinite(s.gravity, "settings gravity");
+  if (!(s.position_correction >= 0.0 && s.position_correction <= 1.0)) {
+    throw InvalidInput("settings position correction must be in [0, 1], got " + std::to_string(s.position_correction));
+  }
+  requireNonNegative(s.slop, "settings slop");
   requirePositive(s.penalty_k, "settings penalty stiffness k");
   requireNonNegative(s.penalty_d, "settings penalty damping d");
 }
@@ -115,7 +119,8 @@ std::string Settings::toString() const {
       << " restitution_threshold=" << restitution_threshold << " warm_start=" << (warm_start ? "on" : "off")
       << " gravity=(" << gravity.x() << ", " << gravity.y() << ", " << gravity.z() << ")"
       << " penalty_k=" << penalty_k << " penalty_d=" << penalty_d
-      << " broad_phase=" << (use_broad_phase ? "sort and sweep" : "all pairs");
+      << " broad_phase=" << (use_broad_phase ? "sort and sweep" : "all pairs")
+      << " position_correction=" << position_correction << " slop=" << slop;
   return out.str();
 }
 
@@ -124,8 +129,11 @@ std::ostream& operator<<(std::ostream& out, const Settings& settings) { return o
 // ---------------------------------------------------------------------------------------------
 // World
 
-World::World(Scene scene, Settings settings)
-    : bodies_(std::move(scene.bodies)), states_(std::move(scene.states)), settings_(settings) {
+World::World(Scene scene, Settings settings, std::shared_ptr<RestingContactSolver> resting)
+    : bodies_(std::move(scene.bodies)),
+      states_(std::move(scene.states)),
+      settings_(settings),
+      resting_solver_(std::move(resting)) {
   requireSize(static_cast<Index>(states_.size()), static_cast<Index>(bodies_.size()), "world states");
   validateSettings(settings_);
   for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) {
@@ -144,6 +152,10 @@ void World::setState(int i, const BodyState& state) {
   states_[i] = state;
   states_[i].q.normalize();
   if (bodies_[i].fixed) states_[i].P = states_[i].L = Vec3::Zero();
+}
+
+std::string World::describe() const {
+  return resting_solver_ ? settings_.toString() + " resting: " + resting_solver_->describe() : settings_.toString();
 }
 
 Vec3 World::velocity(int i) const {
@@ -170,6 +182,8 @@ void World::step(double h) {
   respond(h);
   // Positions and orientations with the new velocities
   integrate(h);
+  // Overlap the velocities cannot remove: move overlapping pairs apart
+  correctPositions();
   // Energies, momenta, penetration
   computeDiagnostics();
   time_ += h;
@@ -285,7 +299,10 @@ void World::classifyContacts() {
     }
     c.j = 0.0;
     c.j_t = Vec3::Zero();
-    if (settings_.warm_start && settings_.method == ResponseMethod::Simultaneous) {
+    // Warm start: the simultaneous solver, and a resting-contact solver, begin from last step's impulses
+    const bool warm = settings_.method == ResponseMethod::Simultaneous ||
+                      (resting_solver_ && c.kind == ContactKind::Resting);
+    if (settings_.warm_start && warm) {
       const auto last = last_impulses_.find({c.a, c.b, c.id});
       if (last != last_impulses_.end()) std::tie(c.j, c.j_t) = last->second;
     }
@@ -295,24 +312,58 @@ void World::classifyContacts() {
 void World::respond(double h) {
   diagnostics_.iterations = 0;
   if (contacts_.empty()) return;
-  PhaseTimer timer(times_.respond);
-  switch (settings_.method) {
-    case ResponseMethod::Sequential:
-      diagnostics_.iterations = solveSequential(contact_bodies_, contacts_, settings_);
-      break;
-    case ResponseMethod::Simultaneous:
-      diagnostics_.iterations = solveSimultaneous(contact_bodies_, contacts_, settings_);
-      break;
-    case ResponseMethod::Penalty:
-      applyPenaltyForces(h);
-      break;
+  {
+    PhaseTimer timer(times_.respond);
+    // Without a resting-contact solver the impulses answer every point; with one, only the
+    // colliding points, and the solver takes the resting ones
+    std::vector<Contact>* answered = &contacts_;
+    if (resting_solver_) {
+      colliding_.clear();
+      for (const Contact& c : contacts_) {
+        if (c.kind == ContactKind::Colliding) colliding_.push_back(c);
+      }
+      answered = &colliding_;
+    }
+    if (!answered->empty()) {
+      switch (settings_.method) {
+        case ResponseMethod::Sequential:
+          diagnostics_.iterations = solveSequential(contact_bodies_, *answered, settings_);
+          break;
+        case ResponseMethod::Simultaneous:
+          diagnostics_.iterations = solveSimultaneous(contact_bodies_, *answered, settings_);
+          break;
+        case ResponseMethod::Penalty:
+          applyPenaltyForces(*answered, h);
+          break;
+      }
+    }
+    if (resting_solver_) {
+      std::size_t next = 0;
+      for (Contact& c : contacts_) {
+        if (c.kind == ContactKind::Colliding) c = colliding_[next++];
+      }
+    }
   }
+  solveRestingContacts(h);
+  PhaseTimer timer(times_.respond);
   storeContactBodies();
 }
 
-void World::applyPenaltyForces(double h) {
+void World::solveRestingContacts(double h) {
+  if (!resting_solver_) return;
+  resting_.clear();
+  for (int k = 0; k < static_cast<int>(contacts_.size()); ++k) {
+    if (contacts_[k].kind == ContactKind::Resting) resting_.push_back(k);
+  }
+  if (resting_.empty()) return;  // nothing rests: the solver is not run
+  PhaseTimer timer(times_.resting);
+  diagnostics_.iterations +=
+      resting_solver_->solve(contact_bodies_, contacts_, resting_, bodies_, states_, settings_.gravity, h);
+}
+
+void World::applyPenaltyForces(std::vector<Contact>& contacts, double h) {
   // A force F over the step is the impulse F h, applied at the contact point
-  for (Contact& c : contacts_) {
+  for (Contact& c : contacts) {
     const Vec3 F = penaltyForce(c.depth, c.v_rel_minus, c.n, settings_.penalty_k, settings_.penalty_d);
     c.j = F.norm() * h;
     applyImpulse(contact_bodies_[c.a], contact_bodies_[c.b], c.p, F * h);
@@ -327,6 +378,32 @@ void World::integrate(double h) {
     BodyState& s = states_[i];
     s.x += h * s.P / bodies_[i].mass;
     if (!s.L.isZero()) s.q = exponentialUpdate(s.q, angularVelocity(static_cast<int>(i)), h).normalized();
+  }
+}
+
+void World::correctPositions() {
+  // Penalty springs push overlapping bodies apart themselves
+  if (settings_.position_correction == 0.0 || settings_.method == ResponseMethod::Penalty) return;
+  if (contacts_.empty()) return;
+  PhaseTimer timer(times_.correct);
+  // One correction per pair, from its deepest point: the points of a manifold come together
+  std::size_t first = 0;
+  while (first < contacts_.size()) {
+    const int a = contacts_[first].a, b = contacts_[first].b;
+    double depth = 0.0;
+    std::size_t last = first;
+    for (; last < contacts_.size() && contacts_[last].a == a && contacts_[last].b == b; ++last) {
+      depth = std::max(depth, contacts_[last].depth);
+    }
+    const double inv_a = bodies_[a].fixed ? 0.0 : 1.0 / bodies_[a].mass;
+    const double inv_b = bodies_[b].fixed ? 0.0 : 1.0 / bodies_[b].mass;
+    const double push = settings_.position_correction * std::max(0.0, depth - settings_.slop);
+    if (push > 0.0 && inv_a + inv_b > 0.0) {
+      const Vec3& n = contacts_[first].n;
+      states_[a].x += (push * inv_a / (inv_a + inv_b)) * n;
+      states_[b].x -= (push * inv_b / (inv_a + inv_b)) * n;
+    }
+    first = last;
   }
 }
 
