@@ -1,0 +1,461 @@
+// Lab 5 benchmark: the box rain (boxRain(N, seed): ground plane, four fixed walls of a 2 x 2 m
+// container, N boxes and spheres of 1 kg on a grid above it) at N = 100, 500, 2000, stepped at
+// h = 1/60 s by our World (sequential and simultaneous impulses) and by Bullet's
+// btDiscreteDynamicsWorld in the same run, then Newton's cradle in both.
+//
+// What each side does per step, on the same bodies (shapes, masses, inertias, restitution,
+// friction, initial positions, orientations and velocities, gravity):
+// - PhysLab: World::step with the default Settings (printed): gravity, sort-and-sweep broad phase
+//   plus every body against the ground plane, Lab 4's manifolds, classification, at most
+//   Settings::iterations solver sweeps (the solvers stop early when no velocity changes by more
+//   than Settings::tolerance), symplectic Euler, the position correction (Settings::position_correction
+//   of the overlap beyond Settings::slop per step), diagnostics.
+// - Bullet: stepSimulation(h, 0), i.e. exactly one internal step of h: gravity, btDbvtBroadphase,
+//   its collision algorithms (btBoxBoxDetector for box-box, exact sphere-sphere and convex-plane,
+//   GJK/EPA with Bullet's default 4 cm margin for sphere-box), btSequentialImpulseConstraintSolver
+//   with m_numIterations = Settings::iterations (no early exit: m_leastSquaresResidualThreshold
+//   stays 0), warm starting, split impulse and Baumgarte position correction (its defaults), and
+//   the integration. Made to match our model where Bullet has a knob: two friction directions per
+//   point (SOLVER_USE_2_FRICTION_DIRECTIONS; ours is a friction cone in the tangent plane), the
+//   pair's restitution is the min of the two bodies' and its friction the geometric mean (our
+//   World's rules; Bullet's default is the products), the restitution threshold is ours, and
+//   sleeping is off (DISABLE_DEACTIVATION) so that settled bodies cost the same as in our World.
+//
+// Timing: every window builds a fresh world (not timed) and times the same number of steps from
+// the same initial state; windows of the three engines alternate, one untimed run of each comes
+// first (warm-up, and the run whose penetration and contacts are reported), and the fastest
+// window counts. The largest penetration is the deepest contact found over the run, for Bullet
+// the most negative getDistance() of its manifolds after each step: both are measured at the same
+// point of the step (after collision detection, before the positions move). The deepest contact
+// of the last step shows what each engine's position correction (Bullet's split impulse and
+// Baumgarte term; ours moves overlapping pairs apart) left behind. Writes <out>/lab05_bench.md and the chart
+// <out>/lab05_bench.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "physlab/demo.hpp"
+#include "physlab/error.hpp"
+#include "physlab/plot.hpp"
+#include "physlab/world.hpp"
+
+#ifdef PHYSLAB_HAVE_BULLET
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <LinearMath/btScalar.h>
+#include <btBulletDynamicsCommon.h>
+#endif
+
+using namespace physlab;
+
+namespace {
+
+constexpr double kStep = 1.0 / 60.0;
+constexpr std::uint64_t kSeed = 5;
+constexpr int kFirstMovingBody = 5;  // boxRain: the ground plane and four walls come first
+
+// What one engine did on one scene: the fastest window and what the untimed run measured.
+struct RunResult {
+  double seconds_per_step = INFINITY;  // fastest window
+  double max_penetration = 0.0;        // deepest contact over the run [m]
+  double last_penetration = 0.0;       // deepest contact of the last step: what correction left [m]
+  double contacts_per_step = 0.0;      // mean contact points per step
+  double sweeps_per_step = NAN;        // mean solver sweeps per step (ours)
+  int outside_walls = 0;               // moving bodies whose centre ended beyond a wall's inner face
+  int below_ground = 0;                // moving bodies whose centre ended below the ground
+  bool finite = true;                  // every position finite at the end
+  PhaseTimes phases;                   // per step, fastest window (ours)
+};
+
+// Where the moving bodies ended up: out over the walls (an overflowing pile may spill, so this
+// is reported, not judged) or with their centre under the floor (they fell through it).
+template <typename PositionOf>
+void countEscapes(int bodies, const PositionOf& position, RunResult& r) {
+  r.outside_walls = r.below_ground = 0;
+  for (int i = kFirstMovingBody; i < bodies; ++i) {
+    const Vec3 x = position(i);
+    r.finite = r.finite && x.allFinite();
+    if (std::abs(x.x()) > 1.0 || std::abs(x.y()) > 1.0) ++r.outside_walls;
+    if (x.z() < 0.0) ++r.below_ground;
+  }
+}
+
+// ----- PhysLab ---------------------------------------------------------------------------------
+
+// The untimed run: penetration, contacts and sweeps of every step, and where the bodies end.
+void measureOurs(const Scene& scene, const Settings& settings, int steps, RunResult& r) {
+  World world(scene, settings);
+  double contacts = 0.0, sweeps = 0.0;
+  for (int n = 0; n < steps; ++n) {
+    world.step(kStep);
+    const Diagnostics& d = world.diagnostics();
+    r.max_penetration = std::max(r.max_penetration, d.max_penetration);
+    r.last_penetration = d.max_penetration;
+    contacts += d.contacts;
+    sweeps += d.iterations;
+  }
+  r.contacts_per_step = contacts / steps;
+  r.sweeps_per_step = sweeps / steps;
+  countEscapes(static_cast<int>(scene.bodies.size()), [&](int i) { return world.states()[i].x; }, r);
+}
+
+// Field by field, by name: PhaseTimes may gain phases (Lab 6's resting solver), which Lab 5's
+// World leaves at zero.
+PhaseTimes scaled(const PhaseTimes& t, double factor) {
+  PhaseTimes s;
+  s.forces = t.forces * factor;
+  s.broad_phase = t.broad_phase * factor;
+  s.narrow_phase = t.narrow_phase * factor;
+  s.classify = t.classify * factor;
+  s.respond = t.respond * factor;
+  s.integrate = t.integrate * factor;
+  s.diagnostics = t.diagnostics * factor;
+  return s;
+}
+
+// One timed window; keeps the phase times of the fastest window.
+void timeOurs(const Scene& scene, const Settings& settings, int steps, RunResult& r) {
+  World world(scene, settings);
+  Stopwatch clock;
+  for (int n = 0; n < steps; ++n) world.step(kStep);
+  const double per_step = clock.seconds() / steps;
+  if (per_step < r.seconds_per_step) {
+    r.seconds_per_step = per_step;
+    r.phases = scaled(world.times(), 1.0 / steps);
+  }
+}
+
+// ----- Bullet ----------------------------------------------------------------------------------
+
+#ifdef PHYSLAB_HAVE_BULLET
+btVector3 toBt(const Vec3& v) { return btVector3(v.x(), v.y(), v.z()); }
+Vec3 fromBt(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
+
+// Our World's pair rules (World::computeContacts), installed in place of Bullet's products.
+btScalar minRestitution(const btCollisionObject* a, const btCollisionObject* b) {
+  return std::min(a->getRestitution(), b->getRestitution());
+}
+btScalar meanFriction(const btCollisionObject* a, const btCollisionObject* b) {
+  return std::sqrt(a->getFriction() * b->getFriction());
+}
+
+// A Bullet world holding the same scene: shapes, masses, diagonal inertias, restitution,
+// friction and initial states taken from our descriptions.
+class BulletWorld {
+ public:
+  BulletWorld(const Scene& scene, const Settings& settings) {
+    world_.setGravity(toBt(settings.gravity));
+    btContactSolverInfo& info = world_.getSolverInfo();
+    info.m_numIterations = settings.iterations;
+    info.m_restitutionVelocityThreshold = settings.restitution_threshold;
+    info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) add(scene.bodies[i], scene.states[i]);
+  }
+  ~BulletWorld() {
+    // The world's destructor touches its objects: take them out while they still exist
+    for (auto it = bodies_.rbegin(); it != bodies_.rend(); ++it) world_.removeRigidBody(it->get());
+  }
+  BulletWorld(const BulletWorld&) = delete;
+  BulletWorld& operator=(const BulletWorld&) = delete;
+
+  void step(double h) { world_.stepSimulation(h, 0); }  // maxSubSteps = 0: one step of exactly h
+
+  // The deepest penetration and the number of contact points of the manifolds now.
+  std::pair<double, int> contacts() {
+    double deepest = 0.0;
+    int points = 0;
+    btDispatcher* dispatcher = world_.getDispatcher();
+    for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+      const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+      for (int k = 0; k < manifold->getNumContacts(); ++k) {
+        deepest = std::max(deepest, -static_cast<double>(manifold->getContactPoint(k).getDistance()));
+        ++points;
+      }
+    }
+    return {deepest, points};
+  }
+
+  Vec3 position(int i) const { return fromBt(bodies_[static_cast<std::size_t>(i)]->getWorldTransform().getOrigin()); }
+  Vec3 velocity(int i) const { return fromBt(bodies_[static_cast<std::size_t>(i)]->getLinearVelocity()); }
+  int size() const { return static_cast<int>(bodies_.size()); }
+
+ private:
+  void add(const BodyDescription& body, const BodyState& state) {
+    std::unique_ptr<btCollisionShape> shape;
+    if (const auto* sphere = std::get_if<Sphere>(&body.shape)) {
+      shape = std::make_unique<btSphereShape>(sphere->radius);
+    } else if (const auto* box = std::get_if<Box>(&body.shape)) {
+      shape = std::make_unique<btBoxShape>(toBt(box->half_extents));
+    } else if (const auto* plane = std::get_if<Plane>(&body.shape)) {
+      shape = std::make_unique<btStaticPlaneShape>(toBt(plane->normal), plane->offset);
+    } else {
+      throw InvalidInput(std::string("the Bullet scene has no ") + shapeName(body.shape));
+    }
+    const Mat3& I = body.inertia_body;
+    if (!body.fixed && !I.isApprox(Mat3(I.diagonal().asDiagonal()))) {
+      throw InvalidInput("the Bullet scene takes diagonal body inertias only");
+    }
+    const double mass = body.fixed ? 0.0 : body.mass;
+    const btVector3 inertia = body.fixed ? btVector3(0, 0, 0) : toBt(I.diagonal());
+    const btTransform pose(btQuaternion(state.q.x(), state.q.y(), state.q.z(), state.q.w()), toBt(state.x));
+    motions_.push_back(std::make_unique<btDefaultMotionState>(pose));
+    btRigidBody::btRigidBodyConstructionInfo info(mass, motions_.back().get(), shape.get(), inertia);
+    info.m_restitution = body.epsilon;
+    info.m_friction = body.mu;
+    bodies_.push_back(std::make_unique<btRigidBody>(info));
+    btRigidBody& rb = *bodies_.back();
+    if (!body.fixed) {
+      const Mat3 R = state.q.normalized().toRotationMatrix();
+      rb.setLinearVelocity(toBt(state.P / body.mass));
+      rb.setAngularVelocity(toBt(R * I.inverse() * R.transpose() * state.L));
+    }
+    rb.setActivationState(DISABLE_DEACTIVATION);
+    shapes_.push_back(std::move(shape));
+    world_.addRigidBody(&rb);
+  }
+
+  btDefaultCollisionConfiguration config_;
+  btCollisionDispatcher dispatcher_{&config_};
+  btDbvtBroadphase broadphase_;
+  btSequentialImpulseConstraintSolver solver_;
+  btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &config_};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btDefaultMotionState>> motions_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+};
+
+void measureBullet(const Scene& scene, const Settings& settings, int steps, RunResult& r) {
+  BulletWorld world(scene, settings);
+  double contacts = 0.0;
+  for (int n = 0; n < steps; ++n) {
+    world.step(kStep);
+    const auto [deepest, points] = world.contacts();
+    r.max_penetration = std::max(r.max_penetration, deepest);
+    r.last_penetration = deepest;
+    contacts += points;
+  }
+  r.contacts_per_step = contacts / steps;
+  countEscapes(world.size(), [&](int i) { return world.position(i); }, r);
+}
+
+void timeBullet(const Scene& scene, const Settings& settings, int steps, RunResult& r) {
+  BulletWorld world(scene, settings);
+  Stopwatch clock;
+  for (int n = 0; n < steps; ++n) world.step(kStep);
+  r.seconds_per_step = std::min(r.seconds_per_step, clock.seconds() / steps);
+}
+#endif
+
+// ----- Newton's cradle -------------------------------------------------------------------------
+
+struct CradleResult {
+  std::vector<double> v;  // final velocity along x of each ball [m/s]
+  double energy_ratio = NAN;    // kinetic energy at the end / at the start
+  double momentum_ratio = NAN;  // x momentum at the end / at the start
+};
+
+CradleResult summarise(std::vector<double> v, double v0) {
+  CradleResult c;
+  double energy = 0.0, momentum = 0.0;
+  for (double vi : v) {
+    energy += 0.5 * vi * vi;  // every ball is 1 kg
+    momentum += vi;
+  }
+  c.energy_ratio = energy / (0.5 * v0 * v0);
+  c.momentum_ratio = momentum / v0;
+  c.v = std::move(v);
+  return c;
+}
+
+CradleResult cradleOurs(int balls, double v0, int steps, ResponseMethod method) {
+  Settings settings;
+  settings.method = method;
+  settings.gravity = Vec3::Zero();
+  World world(newtonsCradle(balls, v0), settings);
+  for (int n = 0; n < steps; ++n) world.step(kStep);
+  std::vector<double> v;
+  for (int i = 0; i < balls; ++i) v.push_back(world.velocity(i).x());
+  return summarise(v, v0);
+}
+
+#ifdef PHYSLAB_HAVE_BULLET
+CradleResult cradleBullet(int balls, double v0, int steps) {
+  Settings settings;
+  settings.gravity = Vec3::Zero();
+  BulletWorld world(newtonsCradle(balls, v0), settings);
+  for (int n = 0; n < steps; ++n) world.step(kStep);
+  std::vector<double> v;
+  for (int i = 0; i < balls; ++i) v.push_back(world.velocity(i).x());
+  return summarise(v, v0);
+}
+#endif
+
+std::string velocities(const std::vector<double>& v) {
+  std::string s;
+  for (double vi : v) s += (s.empty() ? "" : ", ") + fmt(std::abs(vi) < 5e-13 ? 0.0 : vi);
+  return s;
+}
+
+std::string percent(double part, double whole) { return fmt(100.0 * part / whole, 2) + "%"; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const DemoOptions options = parseDemoOptions(
+        argc, argv, "Lab 5 benchmark: the box rain and Newton's cradle, PhysLab's World against Bullet.");
+    const std::vector<int> sizes = options.quick ? std::vector<int>{100, 500} : std::vector<int>{100, 500, 2000};
+    const int windows = options.quick ? 2 : 5;
+    // 3 s of rain at N <= 500 (the last bodies land at about 1.6 s); 1.5 s at N = 2000, where a
+    // step costs up to 50 ms and the column (50 m high) is still falling
+    const auto stepsFor = [&](int n) { return options.quick ? 20 : (n <= 500 ? 180 : 90); };
+
+#ifdef PHYSLAB_HAVE_BULLET
+    gCalculateCombinedRestitutionCallback = &minRestitution;
+    gCalculateCombinedFrictionCallback = &meanFriction;
+    const std::string bullet = "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100) +
+                               (sizeof(btScalar) == 8 ? " (double)" : " (float)");
+#endif
+    Settings sequential, simultaneous;
+    sequential.method = ResponseMethod::Sequential;
+    simultaneous.method = ResponseMethod::Simultaneous;
+    std::cout << "PhysLab settings: " << sequential << "\n  and: " << simultaneous << "\n";
+
+    struct Engine {
+      std::string name, label;
+      std::vector<RunResult> at;  // one per size
+    };
+    std::vector<Engine> engines = {{"PhysLab sequential", "PhysLab sequential", {}},
+                                   {"PhysLab simultaneous", "PhysLab simultaneous", {}}};
+#ifdef PHYSLAB_HAVE_BULLET
+    engines.push_back({bullet + " sequential impulse", "Bullet btSequentialImpulseConstraintSolver", {}});
+#endif
+
+    for (const int n : sizes) {
+      const Scene scene = boxRain(n, kSeed);
+      const int steps = stepsFor(n);
+      std::vector<RunResult> r(engines.size());
+      measureOurs(scene, sequential, steps, r[0]);
+      measureOurs(scene, simultaneous, steps, r[1]);
+#ifdef PHYSLAB_HAVE_BULLET
+      measureBullet(scene, sequential, steps, r[2]);
+#endif
+      for (int w = 0; w < windows; ++w) {
+        timeOurs(scene, sequential, steps, r[0]);
+        timeOurs(scene, simultaneous, steps, r[1]);
+#ifdef PHYSLAB_HAVE_BULLET
+        timeBullet(scene, sequential, steps, r[2]);
+#endif
+      }
+      for (std::size_t e = 0; e < engines.size(); ++e) engines[e].at.push_back(r[e]);
+      std::cout << "N = " << n << ": " << steps << " steps, best of " << windows << " windows done\n";
+    }
+
+    // The main table: speed and penetration per engine and size, with the time ratio to Bullet.
+    Table table({"N", "engine", "ms per step", "steps per second", "time / Bullet's", "max penetration [mm]",
+                 "in the last step [mm]", "contact points per step", "solver sweeps per step", "outside walls / below ground at end"});
+    for (std::size_t s = 0; s < sizes.size(); ++s) {
+      for (const Engine& e : engines) {
+        const RunResult& r = e.at[s];
+        const double bullet_seconds = engines.size() > 2 ? engines[2].at[s].seconds_per_step : NAN;
+        table.add({std::to_string(sizes[s]), e.name, fmt(1e3 * r.seconds_per_step), fmt(1.0 / r.seconds_per_step),
+                   std::isfinite(bullet_seconds) ? fmt(r.seconds_per_step / bullet_seconds) : "-",
+                   fmt(1e3 * r.max_penetration), fmt(1e3 * r.last_penetration), fmt(r.contacts_per_step),
+                   std::isfinite(r.sweeps_per_step) ? fmt(r.sweeps_per_step) : "up to " + std::to_string(sequential.iterations),
+                   r.finite ? std::to_string(r.outside_walls) + " / " + std::to_string(r.below_ground) : "NOT FINITE"});
+      }
+    }
+#ifndef PHYSLAB_HAVE_BULLET
+    table.add({"-", "Bullet", "not installed", "-", "-", "-", "-", "-", "-", "-"});
+#endif
+
+    // Where our step's time goes: ms per step in each phase of World::step, fastest window.
+    Table phases({"N", "method", "forces", "broad phase", "narrow phase", "classify", "respond", "integrate",
+                  "diagnostics", "sum of phases [ms]", "respond share"});
+    for (std::size_t s = 0; s < sizes.size(); ++s) {
+      for (std::size_t e = 0; e < 2; ++e) {
+        const PhaseTimes& p = engines[e].at[s].phases;
+        const double sum = p.forces + p.broad_phase + p.narrow_phase + p.classify + p.respond + p.integrate + p.diagnostics;
+        phases.add({std::to_string(sizes[s]), responseMethodName(e == 0 ? ResponseMethod::Sequential : ResponseMethod::Simultaneous),
+                    fmt(1e3 * p.forces), fmt(1e3 * p.broad_phase), fmt(1e3 * p.narrow_phase), fmt(1e3 * p.classify),
+                    fmt(1e3 * p.respond), fmt(1e3 * p.integrate), fmt(1e3 * p.diagnostics), fmt(1e3 * sum),
+                    percent(p.respond, sum)});
+      }
+    }
+
+    // Newton's cradle: zero gravity, epsilon = 1, the first ball at v0, one second at 1/60 s.
+    const double v0 = 1.0;
+    const int cradle_steps = 60;
+    Table cradle({"balls", "engine", "final velocities along x [m/s]", "kinetic energy end / start",
+                  "momentum end / start"});
+    for (const int balls : {3, 5}) {
+      const auto row = [&](const std::string& name, const CradleResult& c) {
+        cradle.add({std::to_string(balls), name, velocities(c.v), fmt(c.energy_ratio, 4), fmt(c.momentum_ratio, 4)});
+      };
+      row("PhysLab sequential", cradleOurs(balls, v0, cradle_steps, ResponseMethod::Sequential));
+      row("PhysLab simultaneous", cradleOurs(balls, v0, cradle_steps, ResponseMethod::Simultaneous));
+#ifdef PHYSLAB_HAVE_BULLET
+      row(bullet + " sequential impulse", cradleBullet(balls, v0, cradle_steps));
+#endif
+    }
+
+    // The chart: ms per step against N, log-log.
+    Chart chart(options.quick ? "Box rain at h = 1/60 s: cost of a step (first 20 steps)"
+                                : "Box rain at h = 1/60 s: cost of a step (3 s of rain; 1.5 s at N = 2000)",
+                "number of bodies N", "time per step [ms]");
+    chart.logX().logY();
+    const char* colours[] = {"#e41a1c", "#377eb8", "#000000"};
+    for (std::size_t e = 0; e < engines.size(); ++e) {
+      Series series{engines[e].label, {}, {}, std::string("linespoints pt 7 lc rgb '") + colours[e % 3] + "'"};
+      for (std::size_t s = 0; s < sizes.size(); ++s) {
+        series.x.push_back(sizes[s]);
+        series.y.push_back(1e3 * engines[e].at[s].seconds_per_step);
+      }
+      chart.add(series);
+    }
+    const std::vector<std::string> chart_paths = chart.save(options.out + "/lab05_bench");
+
+#ifdef PHYSLAB_HAVE_BULLET
+    for (std::size_t s = 0; s < sizes.size(); ++s) {
+      for (std::size_t e = 0; e < 2; ++e) {
+        const RunResult &ours = engines[e].at[s], &peer = engines[2].at[s];
+        std::cout << "N = " << sizes[s] << ", " << engines[e].name << " time / Bullet time: "
+                  << fmt(ours.seconds_per_step / peer.seconds_per_step) << ", max penetration ours / Bullet's: "
+                  << fmt(ours.max_penetration / peer.max_penetration) << "\n";
+      }
+    }
+#endif
+    std::cout << "Lab 5 benchmark: box rain, h = 1/60 s, best of " << windows << " windows\n";
+    table.print(std::cout);
+    std::cout << "\nLab 5 benchmark: PhysLab's phases, ms per step (fastest window)\n";
+    phases.print(std::cout);
+    std::cout << "\nLab 5 benchmark: Newton's cradle, no gravity, epsilon = 1, v0 = " << fmt(v0) << " m/s, "
+              << cradle_steps << " steps of 1/60 s\n";
+    cradle.print(std::cout);
+
+    // One Markdown file: the main table, then the phases and the cradle.
+    const std::string path = table.saveMarkdown(options.out + "/lab05_bench.md");
+    const std::string phases_path = phases.saveMarkdown(options.out + "/lab05_bench_phases.md");
+    const std::string cradle_path = cradle.saveMarkdown(options.out + "/lab05_bench_cradle.md");
+    {
+      std::ifstream phases_file(phases_path), cradle_file(cradle_path);
+      std::ofstream out(path, std::ios::app);
+      out << "\nPhysLab's phases, ms per step (fastest window).\n\n" << phases_file.rdbuf();
+      out << "\nNewton's cradle: no gravity, epsilon = 1, v0 = " << fmt(v0) << " m/s, " << cradle_steps
+          << " steps of 1/60 s.\n\n" << cradle_file.rdbuf();
+    }
+    std::remove(phases_path.c_str());
+    std::remove(cradle_path.c_str());
+    std::cout << "wrote " << path << "\n";
+    for (const std::string& p : chart_paths) std::cout << "wrote " << p << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "bench_05_impulses: " << e.what() << "\n";
+    return 1;
+  }
+}
