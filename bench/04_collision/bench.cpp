@@ -289,8 +289,8 @@ int main(int argc, char** argv) {
     std::vector<Row> rows;
     const std::vector<std::unique_ptr<BroadPhase>> methods = allBroadPhases();
     for (const auto& m : methods) rows.push_back({"PhysLab", m->name(), m->name(), {}});
-    Row sap_update{"PhysLab", "sort and sweep, update (boxes unmoved)", "SAP update (unmoved)", {}};
-    Row bvh_refit{"PhysLab", "BVH, refit (boxes unmoved)", "BVH refit (unmoved)", {}};
+    Row sap_update{"PhysLab", "sort and sweep, update (boxes unmoved)", "sort and sweep, update (unmoved)", {}};
+    Row bvh_refit{"PhysLab", "BVH, refit (boxes unmoved)", "BVH, refit (unmoved)", {}};
 #ifdef PHYSLAB_HAVE_BULLET
     const std::string bullet = "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100);
     Row bullet_row{bullet, "btDbvtBroadphase", "Bullet btDbvt", {}};
@@ -448,12 +448,10 @@ int main(int argc, char** argv) {
     Chart chart("Broad phase: N random boxes to all overlapping pairs", "number of boxes N",
                 "time per query [ms]");
     chart.logX().logY();
-    const char* colours[] = {"#000000", "#e41a1c", "#377eb8", "#4daf4a", "#984ea3",
-                             "#ff7f00", "#a65628", "#f781bf", "#17becf"};
-    std::size_t colour = 0;
     for (const Row& row : rows) {
-      Series series{row.label, {}, {},
-                    std::string("linespoints pt 7 lc rgb '") + colours[colour++ % 9] + "'"};
+      // Colours name the method (the demo's too); an update of unmoved boxes is dashed
+      const bool update = row.label.find("unmoved") != std::string::npos;
+      Series series{row.label, {}, {}, update ? "linespoints pt 6 dt 2" : "linespoints pt 7"};
       for (std::size_t s = 0; s < sizes.size(); ++s) {
         if (std::isfinite(row.at[s].seconds)) {
           series.x.push_back(sizes[s]);

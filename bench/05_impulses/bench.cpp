@@ -409,9 +409,8 @@ int main(int argc, char** argv) {
                                 : "Box rain at h = 1/60 s: cost of a step (3 s of rain; 1.5 s at N = 2000)",
                 "number of bodies N", "time per step [ms]");
     chart.logX().logY();
-    const char* colours[] = {"#e41a1c", "#377eb8", "#000000"};
     for (std::size_t e = 0; e < engines.size(); ++e) {
-      Series series{engines[e].label, {}, {}, std::string("linespoints pt 7 lc rgb '") + colours[e % 3] + "'"};
+      Series series{engines[e].label, {}, {}, "linespoints pt 7"};
       for (std::size_t s = 0; s < sizes.size(); ++s) {
         series.x.push_back(sizes[s]);
         series.y.push_back(1e3 * engines[e].at[s].seconds_per_step);

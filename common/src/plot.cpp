@@ -61,6 +61,34 @@ Chart& Chart::mark(Marker marker) {
   return *this;
 }
 
+std::string methodColour(const std::string& title) {
+  // One entry per method or engine across the labs; never two methods of one chart alike
+  static const std::pair<const char*, const char*> kColours[] = {
+      // Labs 1-3: integrators
+      {"explicit Euler", "#d62728"}, {"symplectic Euler", "#1f77b4"}, {"midpoint", "#2ca02c"},
+      {"trapezoid", "#9467bd"}, {"RK4", "#ff7f0e"}, {"Verlet", "#17becf"}, {"implicit Euler", "#8c564b"},
+      // Lab 2: linear solvers
+      {"CG", "#1f77b4"}, {"LDLT", "#d62728"},
+      // Lab 4: broad phases
+      {"brute force", "#000000"}, {"sort and sweep", "#e41a1c"}, {"uniform grid", "#377eb8"},
+      {"BVH", "#4daf4a"}, {"k-d tree", "#984ea3"},
+      // Lab 5: responses
+      {"sequential", "#1f5fbf"}, {"simultaneous", "#d62728"}, {"penalty", "#ff9f1c"},
+      // Lab 6: LCP solvers
+      {"pivoting", "#2ca02c"}, {"Lemke", "#9467bd"}, {"PGS", "#ff7f0e"},
+      // Peers
+      {"Bullet", "#7f7f7f"}, {"FCL", "#bcbd22"}, {"ODE", "#17becf"}, {"MuJoCo", "#8c564b"},
+      {"Boost.Odeint", "#e377c2"}, {"Siconos", "#c49c94"}};
+  const std::string prefix = "PhysLab ";
+  const std::string name = title.rfind(prefix, 0) == 0 ? title.substr(prefix.size()) : title;
+  for (const auto& [method, colour] : kColours) {
+    const std::size_t n = std::char_traits<char>::length(method);
+    if (name.compare(0, n, method) != 0) continue;
+    if (name.size() == n || name[n] == ' ' || name[n] == ',' || name[n] == '(') return colour;
+  }
+  return "";
+}
+
 std::vector<std::string> Chart::save(const std::string& stem) const {
   makeParentFolder(stem);
   // Keep only the points the axes can show, so gnuplot never meets log(0).
@@ -102,12 +130,18 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     bool first = true;
     for (std::size_t i = 0; i < series_.size(); ++i) {
       if (data[i].empty()) continue;
-      plot << (first ? "" : ", ") << "'-' with " << series_[i].style << " lw 2 title "
-           << quoted(series_[i].title);
+      const std::string& style = series_[i].style;
+      plot << (first ? "" : ", ") << "'-' with " << style;
+      // The method's colour unless the style chooses one; a 2-point line unless it sets a width
+      const std::string colour = methodColour(series_[i].title);
+      const bool coloured = style.find("lc ") != std::string::npos || style.find("linecolor") != std::string::npos;
+      if (!coloured && !colour.empty()) plot << " lc rgb '" << colour << "'";
+      if (style.find("lw ") == std::string::npos && style.find("linewidth") == std::string::npos) plot << " lw 2";
+      plot << " title " << quoted(series_[i].title);
       first = false;
     }
     if (first) {
-      gp << "set label 'no data to show' at graph 0.4, graph 0.5\nplot [0:1] NaN notitle\n";
+      gp << "unset logscale\nset label 'no data to show' at graph 0.4, graph 0.5\nplot [0:1] NaN notitle\n";
     } else {
       gp << plot.str() << "\n";
       for (const auto& d : data) {

@@ -122,7 +122,8 @@ void clothEnergyChart(const DemoOptions& options, std::vector<std::string>& writ
       {"implicit Euler, h = 1/600", implicitStepper(LinearSolver::ConjugateGradient), 1.0 / 600},
       {"implicit Euler, h = 1/60", implicitStepper(LinearSolver::ConjugateGradient), 1.0 / 60}};
   for (const auto& [name, step, h] : runs) {
-    Series s{name, {}, {}, "lines"};
+    // The long step dashed: the same method, so the same colour
+    Series s{name, {}, {}, h > 1.0 / 100 ? "lines dt 2" : "lines"};
     attempt(name, [&, &step = step, h = h] {
       VecX X = sys.restState();
       const double E0 = sys.energy(X);
@@ -160,7 +161,8 @@ void workPrecisionChart(const DemoOptions& options, std::vector<std::string>& wr
     });
     if (!have_reference) continue;
     for (LinearSolver solver : {LinearSolver::ConjugateGradient, LinearSolver::LDLT}) {
-      Series s{solverName(solver) + ", k = " + fmt(k), {}, {}, "linespoints"};
+      // Colour for the solver, dashes and marks for the stiffness
+      Series s{solverName(solver) + ", k = " + fmt(k), {}, {}, k > 1e3 ? "linespoints dt 2 pt 6" : "linespoints pt 7"};
       attempt(s.title, [&] {
         for (int level = 0; level < (options.quick ? 4 : 7); ++level) {
           const long steps = 4L << level;

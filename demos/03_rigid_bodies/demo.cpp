@@ -21,10 +21,7 @@ const Vec3 kOmega0(0.4, 1.0, 0.6);  // body frame, a generic tumble
 // Line style of one curve: the colour names the integrator, the dash pattern the orientation
 // form, so that nine curves stay legible (gnuplot's default palette repeats after eight).
 std::string curveStyle(Method method, int form) {
-  const std::string colour = method == Method::ExplicitEuler     ? "#d62728"
-                             : method == Method::SymplecticEuler ? "#ff9f1c"
-                                                                 : "#1f5fbf";
-  return "lines lc rgb '" + colour + "' dt " + std::to_string(form + 1);
+  return "lines lc rgb '" + methodColour(methodName(method)) + "' dt " + std::to_string(form + 1);
 }
 
 // Relative drift of the body-frame angular momentum magnitude |R^T L| from |L_0|. World L is

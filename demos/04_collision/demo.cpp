@@ -114,9 +114,6 @@ void broadPhaseChart(const DemoOptions& options, std::vector<std::string>& writt
   const int brute_force_limit = options.quick ? 3162 : 10000;
   const double window = options.quick ? 0.03 : 0.1;
   const std::vector<std::unique_ptr<BroadPhase>> methods = allBroadPhases();
-  // The benchmark's colours for the same methods (bench/04_collision/bench.cpp), so that the
-  // two charts read alike.
-  const char* colours[] = {"#000000", "#e41a1c", "#377eb8", "#4daf4a", "#984ea3"};
   std::vector<std::vector<Aabb>> scenes;
   for (const int n : sizes) scenes.push_back(randomBoxes(n));
 
@@ -131,7 +128,7 @@ void broadPhaseChart(const DemoOptions& options, std::vector<std::string>& writt
   for (std::size_t k = 0; k < methods.size(); ++k) {
     BroadPhase& method = *methods[k];
     attempt("broad phase cost, " + method.name(), [&] {
-      Series series{method.name(), {}, {}, std::string("linespoints pt 7 lc rgb '") + colours[k] + "'"};
+      Series series{method.name(), {}, {}, "linespoints pt 7"};
       for (std::size_t s = 0; s < sizes.size(); ++s) {
         if (k == 0 && sizes[s] > brute_force_limit) break;
         const double ms = 1e3 * secondsPerQuery(method, scenes[s], window);

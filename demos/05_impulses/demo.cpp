@@ -20,17 +20,9 @@ namespace {
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kG = 9.81;
 
-// Line colours by method, so that every chart reads alike.
-std::string methodColour(ResponseMethod method) {
-  switch (method) {
-    case ResponseMethod::Sequential: return "#1f5fbf";
-    case ResponseMethod::Simultaneous: return "#d62728";
-    case ResponseMethod::Penalty: return "#ff9f1c";
-  }
-  return "#000000";
-}
-
-std::string colourOf(const std::string& colour) { return " lc rgb '" + colour + "'"; }
+// The method's colour in every chart (plot.hpp's table), for series whose titles do not start
+// with the method's name.
+std::string colourOf(ResponseMethod method) { return " lc rgb '" + methodColour(responseMethodName(method)) + "'"; }
 
 Settings settingsFor(ResponseMethod method, const Vec3& gravity = Vec3(0.0, 0.0, -kG)) {
   Settings s;
@@ -95,8 +87,8 @@ void penaltyStiffnessChart(const DemoOptions& options, std::vector<std::string>&
   for (double e = 3.0; e <= 8.0 + 1e-9; e += decade_step) ks.push_back(std::pow(10.0, e));
 
   bool drawn = attempt("penalty against stiffness", [&] {
-    Series resting{"penalty, resting", {}, {}, "linespoints pt 7" + colourOf(methodColour(ResponseMethod::Penalty))};
-    Series dropped{"penalty, dropped from 0.5 m", {}, {}, "linespoints pt 5 dt 2" + colourOf(methodColour(ResponseMethod::Penalty))};
+    Series resting{"penalty, resting", {}, {}, "linespoints pt 7" + colourOf(ResponseMethod::Penalty)};
+    Series dropped{"penalty, dropped from 0.5 m", {}, {}, "linespoints pt 5 dt 2" + colourOf(ResponseMethod::Penalty)};
     Series unstable{"penalty, unstable (E > 2 E_0)", {}, {}, "points pt 2 ps 2.5 lc rgb 'black'"};
     double last_stable_k = kNaN, first_unstable_k = kNaN;
     for (const double k : ks) {
@@ -130,7 +122,7 @@ void penaltyStiffnessChart(const DemoOptions& options, std::vector<std::string>&
   drawn |= attempt("sequential at the same step", [&] {
     const BallRun fall = runBall(settingsFor(ResponseMethod::Sequential), drop, 0.0, h, duration);
     Series impulse{"sequential, dropped from 0.5 m", {ks.front(), ks.back()},
-                   {fall.largest_depth, fall.largest_depth}, "lines" + colourOf(methodColour(ResponseMethod::Sequential))};
+                   {fall.largest_depth, fall.largest_depth}, "lines" + colourOf(ResponseMethod::Sequential)};
     chart.add(impulse);
     table.add({"sequential, h = 1 ms: largest depth of the dropped ball [m]", fmt(fall.largest_depth),
                "at most v h = " + fmt(std::sqrt(2.0 * kG * drop) * h)});
@@ -154,7 +146,7 @@ void penaltyStepChart(const DemoOptions& options, std::vector<std::string>& writ
   bool drawn = false;
   for (const ResponseMethod method : {ResponseMethod::Penalty, ResponseMethod::Sequential}) {
     drawn |= attempt(std::string(responseMethodName(method)) + " against step size", [&] {
-      Series s{responseMethodName(method), {}, {}, "linespoints pt 7" + colourOf(methodColour(method))};
+      Series s{responseMethodName(method), {}, {}, "linespoints pt 7" + colourOf(method)};
       Settings settings = settingsFor(method);
       settings.penalty_k = k;
       double first_gain = kNaN;
@@ -196,9 +188,9 @@ void cradleChart(const DemoOptions& options, std::vector<std::string>& written, 
     const std::string name = responseMethodName(method);
     drawn |= attempt("cradle, " + name, [&] {
       World world(cradleWithGap(balls, v0, gap), settingsFor(method, Vec3::Zero()));
-      Series first{name + ", first ball", {0.0}, {v0}, "lines" + colourOf(methodColour(method))};
-      Series middle{name + ", balls 2-4", {0.0}, {0.0}, "linespoints dt 3 pt 6 ps 1.5 pi 40" + colourOf(methodColour(method))};
-      Series last{name + ", last ball", {0.0}, {0.0}, "lines dt 2" + colourOf(methodColour(method))};
+      Series first{name + ", first ball", {0.0}, {v0}, "lines" + colourOf(method)};
+      Series middle{name + ", balls 2-4", {0.0}, {0.0}, "linespoints dt 3 pt 6 ps 1.5 pi 40" + colourOf(method)};
+      Series last{name + ", last ball", {0.0}, {0.0}, "lines dt 2" + colourOf(method)};
       for (long n = 1; n <= std::lround(duration / h); ++n) {
         world.step(h);
         first.x.push_back(world.time());
@@ -246,7 +238,7 @@ void stackChart(const DemoOptions& options, std::vector<std::string>& written, T
     const std::string name = responseMethodName(method);
     drawn |= attempt("stack, " + name, [&] {
       World world(boxStack(boxes, 1e-3), settingsFor(method));
-      Series depth{name, {}, {}, "lines" + colourOf(methodColour(method))};
+      Series depth{name, {}, {}, "lines" + colourOf(method)};
       const Vec3 top_start = world.states()[boxes].x;
       for (long n = 1; n <= std::lround(duration / h); ++n) {
         world.step(h);
@@ -310,7 +302,7 @@ void convergenceChart(const DemoOptions& options, std::vector<std::string>& writ
   for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
     const std::string name = responseMethodName(method);
     drawn |= attempt("convergence, " + name, [&] {
-      Series s{name, {}, {}, "linespoints pt 7" + colourOf(methodColour(method))};
+      Series s{name, {}, {}, "linespoints pt 7" + colourOf(method)};
       for (int sweeps = 1; sweeps <= most; sweeps *= 2) {
         Settings settings = settingsFor(method);
         settings.iterations = sweeps;
@@ -345,8 +337,8 @@ void apexChart(const DemoOptions& options, std::vector<std::string>& written, Ta
       const std::string colour = colours[c++];
       const std::string tag = "epsilon = " + fmt(epsilon);
       World world(bouncingBall(h0, epsilon), settingsFor(ResponseMethod::Sequential));
-      Series measured{"sequential, " + tag, {}, {}, "points pt 7 ps 1.3" + colourOf(colour)};
-      Series predicted{"prediction, " + tag, {}, {}, "lines dt 2" + colourOf(colour)};
+      Series measured{"sequential, " + tag, {}, {}, "points pt 7 ps 1.3 lc rgb '" + colour + "'"};
+      Series predicted{"prediction, " + tag, {}, {}, "lines dt 2 lc rgb '" + colour + "'"};
       double vz_before = 0.0;
       for (long n = 1; n <= std::lround(duration / h); ++n) {
         world.step(h);

@@ -17,11 +17,19 @@ namespace physlab {
 
 /// One line or point set of a chart.
 struct Series {
-  std::string title;        ///< legend entry
+  std::string title;        ///< legend entry; a method's name first gives it the method's colour
   std::vector<double> x;    ///< abscissae
   std::vector<double> y;    ///< ordinates, same length as x
-  std::string style = "linespoints";  ///< gnuplot style: "lines", "points", "linespoints", ...
+  std::string style = "linespoints";  ///< gnuplot style: "lines", "points", "linespoints", ... (lc and lw optional)
 };
+
+/// The colour ("#rrggbb") of a method or engine in every chart of every lab, so that RK4 is the
+/// same orange wherever it appears: looked up by the name the labs print (methodName(),
+/// responseMethodName(), lcpMethodName(), a broad phase's name(), "Bullet", "ODE", ...), at the
+/// start of `title` and followed by its end, a space, a comma or a parenthesis; a leading
+/// "PhysLab " is skipped. Empty for anything else (gnuplot then picks). Chart::save() applies it
+/// to every series whose style names no colour.
+std::string methodColour(const std::string& title);
 
 /// A vertical marker line with a label (e.g. a stability boundary).
 struct Marker {
