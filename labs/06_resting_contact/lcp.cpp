@@ -1,0 +1,99 @@
+// Lab 6, sections 3-6: the LCP solvers (pivoting, Lemke, projected Gauss-Seidel and its cone variant).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/LU>
+
+#include "physlab/lcp.hpp"
+
+namespace physlab {
+
+LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& options) {
+  // TODO(student): validateLcp(A, b, "solveLcpPivoting"); start from f = 0, w = b, with no contact clamped (C) or free (NC).
+  // TODO(student): then take the contacts d = 0..n-1 in order, each once.
+  // Sign tests on w and dw need A's scale: below pivot_tolerance * scale is round-off
+  // TODO(student): scale = the largest |a_ij|.
+  // Drive w_d to zero, changing one contact's set at each blocked step (steps that others
+  // block may bring w_d to zero on the way: a degenerate contact)
+  // TODO(student): while w_d < -options.pivot_tolerance * scale take a step, a pivot: count it, and throw
+  // TODO(student): LcpFailure past max(options.max_iterations, 10 n).
+  // TODO(student): direction: df_d = 1, df_C solves A_CC df_C = -A_Cd (LcpFailure on an LU pivot of A_CC below
+  // TODO(student): pivot_tolerance times its largest entry);
+  // TODO(student): df = 0 elsewhere; dw = A df.
+  // A dw_i within round-off of the terms it sums is no direction at all
+  // TODO(student): noise_i = pivot_tolerance * sum_j |a_ij| |df_j|; only |dw_i| > noise_i counts as a sign.
+  // Find the blocking contact by the ratio test (d first, so that ties end the drive)
+  // TODO(student): d blocks at s = -w_d / dw_d when dw_d > noise_d; i in C at f_i / -df_i when df_i < -pivot_tolerance;
+  // TODO(student): i in NC at w_i / -dw_i when dw_i < -noise_i; the smallest s wins, ties to d.
+  // Nothing blocks: w_d does not grow with f_d (PSD: the Schur complement of A_CC is zero)
+  // TODO(student): throw LcpFailure("... singular pivot ...") rather than step by infinity.
+  // Move the blocking contact to its other set, setting the blocked value to zero exactly
+  // TODO(student): f += s df, w += s dw; d blocks: w_d = 0; C -> NC: f_j = 0; NC -> C: w_j = 0.
+  // Add d to the clamped set when it pushes, else to the free set (f_d = 0, w_d >= 0)
+  // TODO(student): f_d > 0: d joins C; otherwise NC.
+  // Report w from f itself, not from the accumulated steps
+  // TODO(student): w = A f + b, residual = lcpResidual(A, b, f), iterations = pivots.
+  notImplemented("solveLcpPivoting", "Lab 6 handout, section 3", A, b, options);
+}
+
+LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& options) {
+  // TODO(student): validateLcp(A, b, "solveLcpLemke").
+  // f = 0 already solves it when b >= 0
+  // TODO(student): return f = 0, w = b, no pivots.
+  // Build the tableau [I | -A | -e | b] of w - A f - e z0 = b; variables 0..n-1 are w, n..2n-1 f, 2n z0
+  // TODO(student): n x (2n + 2) tableau; the basis starts as w_0..w_{n-1}; a pivot on (row, column) divides the row
+  // TODO(student): by its entry and subtracts multiples of it from every other row, and puts the column's variable in the basis.
+  // Let z0 enter where b is most negative: z0 = -min b makes every w >= 0 (ties: the last such
+  // row, the lexicographic minimum of the rows of [b | I])
+  // TODO(student): pivot on (argmin b, z0); the w that left says which variable enters next.
+  // Let the complement of the leaving variable enter until z0 leaves
+  // TODO(student): w_i <-> f_i; count pivots, LcpFailure past max(options.max_iterations, 10 n).
+  // Find the leaving row by the minimum ratio test; ties broken lexicographically by the
+  // rows of B^-1 (the tableau's first n columns), which never cycles
+  // TODO(student): rows with entry > pivot_tolerance in the entering column; none: throw LcpFailure("... ray termination ...").
+  // z0 leaving among the ties ends the method at once
+  // TODO(student): otherwise compare the tied rows' entries in columns 0, 1, ... divided by the pivot entry, keeping the smallest.
+  // Read f from the basic variables (round-off may leave -1e-17: clamp to the contract's f >= 0)
+  // TODO(student): f_i = right-hand side of the row where f_i is basic, 0 when nonbasic; w = A f + b; residual.
+  notImplemented("solveLcpLemke", "Lab 6 handout, section 4", A, b, options);
+}
+
+LcpSolution solveLcpPgs(const MatX& A, const VecX& b, const LcpOptions& options, std::vector<double>* residuals) {
+  // TODO(student): validateLcp(A, b, "solveLcpPgs").
+  // Check the diagonal: each update divides by a_ii
+  // TODO(student): LcpFailure when some a_ii <= options.pivot_tolerance.
+  // Start from the warm start when there is one, else from zero
+  // TODO(student): f = options.initial with negative entries set to 0 when it has n entries, else f = 0.
+  // Rows of A as contiguous columns: Eigen stores A by columns
+  // TODO(student): optional for speed: At = A.transpose() once, then At.col(i) is row i.
+  // Sweep: solve row i for f_i with the others fixed, then project onto f_i >= 0
+  // TODO(student): for i = 0..n-1: w_i = A.row(i) f + b_i with the newest f; f_i = max(0, f_i - w_i / a_ii).
+  // TODO(student): after each sweep: residual = lcpResidual(A, b, f), append it to *residuals when given,
+  // TODO(student): stop when it is <= options.tolerance or after options.max_iterations sweeps; w = A f + b.
+  notImplemented("solveLcpPgs", "Lab 6 handout, section 5", A, b, options, residuals);
+}
+
+LcpSolution solveLcpPgsCone(const MatX& A, const VecX& b, const VecX& mu, const LcpOptions& options) {
+  // TODO(student): validateLcp; InvalidInput when n is not a multiple of 3, mu.size() != n / 3 or some mu < 0;
+  // TODO(student): LcpFailure on a diagonal entry <= pivot_tolerance, as in PGS.
+  // Start from the warm start when there is one, inside the cones, else from zero
+  // TODO(student): f = options.initial (normal entries raised to >= 0) when it has n entries, else 0; then
+  // TODO(student): scale each (f_t, f_o) longer than mu f_n down to that length.
+  // Update the normal force as in PGS: f_n >= 0
+  // TODO(student): per contact c (entries 3c, 3c + 1, 3c + 2): f_n = max(0, f_n - w_n / a_nn).
+  // Update the tangential pair together, aiming at no sliding (w_t = w_o = 0): one step
+  // along -w_T scaled by the largest eigenvalue of its 2 x 2 block, the same for both
+  // entries, so that on the rim friction opposes the sliding w_T exactly (Coulomb)
+  // TODO(student): w_T = (w_t, w_o) with the new f_n; lambda = larger eigenvalue of [[a_tt, a_to], [a_ot, a_oo]]
+  // TODO(student): (symmetrised); (f_t, f_o) -= w_T / lambda.
+  // Project the tangential force onto the disc |(f_t, f_o)| <= mu f_n
+  // TODO(student): when longer than mu f_n, scale (f_t, f_o) down to that length.
+  // Measure the change as a change of w (|df_i| a_ii), comparable across contacts
+  // TODO(student): stop when the sweep's largest |df_i| a_ii <= options.tolerance (that is the residual) or after max_iterations.
+  notImplemented("solveLcpPgsCone", "Lab 6 handout, section 6", A, b, mu, options);
+}
+
+}  // namespace physlab

@@ -1,0 +1,323 @@
+// Lab 6, sections 3-6: the LCP solvers (pivoting, Lemke, projected Gauss-Seidel and its cone variant).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/LU>
+
+#include "physlab/lcp.hpp"
+
+namespace physlab {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The pivot limit both pivoting methods share: each contact needs a few pivots, so 10 n is
+// plenty for a solver that does not cycle.
+int pivotLimit(const LcpOptions& options, Index n) {
+  return std::max(options.max_iterations, static_cast<int>(10 * n));
+}
+
+void validateOptions(const LcpOptions& options, const std::string& what) {
+  requireNonNegative(options.tolerance, what + " options.tolerance");
+  requireNonNegative(options.pivot_tolerance, what + " options.pivot_tolerance");
+  requireFinite(options.initial, what + " options.initial");
+}
+
+// PGS's first f: the warm start with negative entries raised to 0 when it has n entries, else 0.
+// (The cone's tangential entries may be negative; it projects them itself.)
+VecX startingForces(const LcpOptions& options, Index n, bool cone = false) {
+  if (options.initial.size() != n) return VecX::Zero(n);
+  VecX f = options.initial;
+  for (Index i = 0; i < n; ++i) {
+    if (!cone || i % 3 == 0) f(i) = std::max(0.0, f(i));
+  }
+  return f;
+}
+
+// Direction of Dantzig's step: raise f_d by 1 and move the clamped forces so that every clamped
+// contact keeps w = 0, i.e. A_CC df_C = -A_Cd.
+VecX pivotingDirection(const MatX& A, const std::vector<Index>& clamped, Index d, double pivot_tolerance) {
+  VecX df = VecX::Zero(A.rows());
+  df(d) = 1.0;
+  if (clamped.empty()) return df;
+  const MatX A_CC = A(clamped, clamped);
+  const Eigen::PartialPivLU<MatX> lu(A_CC);
+  // A tiny pivot (relative to the block's entries) means the clamped contacts cannot hold w = 0
+  // on their own: two of them are the same constraint
+  if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() <= pivot_tolerance * A_CC.cwiseAbs().maxCoeff()) {
+    throw LcpFailure("solveLcpPivoting: singular pivot in the clamped contacts' block A_CC while driving contact " +
+                     std::to_string(d));
+  }
+  const VecX df_clamped = lu.solve(-A(clamped, d));
+  for (std::size_t k = 0; k < clamped.size(); ++k) df(clamped[k]) = df_clamped(static_cast<Index>(k));
+  return df;
+}
+
+void moveIndex(std::vector<Index>& from, std::vector<Index>& to, Index i) {
+  from.erase(std::find(from.begin(), from.end(), i));
+  to.push_back(i);
+}
+
+}  // namespace
+
+LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& options) {
+  validateLcp(A, b, "solveLcpPivoting");
+  validateOptions(options, "solveLcpPivoting");
+  const Index n = b.size();
+  const int limit = pivotLimit(options, n);
+  // Sign tests on w and dw need A's scale: below pivot_tolerance * scale is round-off
+  const MatX A_abs = A.cwiseAbs();
+  const double scale = n > 0 ? A_abs.maxCoeff() : 0.0;
+  LcpSolution s;
+  s.f = VecX::Zero(n);
+  s.w = b;
+  std::vector<Index> clamped, free;  // C: w = 0, f >= 0; NC: f = 0, w >= 0
+  clamped.reserve(static_cast<std::size_t>(n));
+  free.reserve(static_cast<std::size_t>(n));
+  for (Index d = 0; d < n; ++d) {
+    // Drive w_d to zero, changing one contact's set at each blocked step (steps that others
+    // block may bring w_d to zero on the way: a degenerate contact)
+    while (s.w(d) < -options.pivot_tolerance * scale) {
+      if (s.iterations >= limit) {
+        throw LcpFailure("solveLcpPivoting: pivot limit " + std::to_string(limit) + " reached while driving contact " +
+                         std::to_string(d));
+      }
+      ++s.iterations;
+      const VecX df = pivotingDirection(A, clamped, d, options.pivot_tolerance);
+      const VecX dw = A * df;
+      // A dw_i within round-off of the terms it sums is no direction at all
+      const VecX dw_noise = options.pivot_tolerance * (A_abs * df.cwiseAbs());
+      // Find the blocking contact by the ratio test (d first, so that ties end the drive)
+      double step = kInfinity;
+      Index blocking = -1;
+      if (dw(d) > dw_noise(d)) {
+        step = -s.w(d) / dw(d);
+        blocking = d;
+      }
+      for (Index i : clamped) {
+        if (df(i) < -options.pivot_tolerance && std::max(s.f(i), 0.0) / -df(i) < step) {
+          step = std::max(s.f(i), 0.0) / -df(i);
+          blocking = i;
+        }
+      }
+      for (Index i : free) {
+        if (dw(i) < -dw_noise(i) && std::max(s.w(i), 0.0) / -dw(i) < step) {
+          step = std::max(s.w(i), 0.0) / -dw(i);
+          blocking = i;
+        }
+      }
+      // Nothing blocks: w_d does not grow with f_d (PSD: the Schur complement of A_CC is zero)
+      if (blocking < 0) {
+        throw LcpFailure("solveLcpPivoting: singular pivot (dw_d = " + std::to_string(dw(d)) +
+                         ") and no contact blocks the step while driving contact " + std::to_string(d) +
+                         " after " + std::to_string(s.iterations) + " pivots: the LCP has no solution this method finds");
+      }
+      s.f += step * df;
+      s.w += step * dw;
+      // Move the blocking contact to its other set, setting the blocked value to zero exactly
+      if (blocking == d) {
+        s.w(d) = 0.0;
+      } else if (std::find(clamped.begin(), clamped.end(), blocking) != clamped.end()) {
+        s.f(blocking) = 0.0;
+        moveIndex(clamped, free, blocking);
+      } else {
+        s.w(blocking) = 0.0;
+        moveIndex(free, clamped, blocking);
+      }
+    }
+    // Add d to the clamped set when it pushes, else to the free set (f_d = 0, w_d >= 0)
+    if (s.f(d) > 0.0) {
+      clamped.push_back(d);
+    } else {
+      free.push_back(d);
+    }
+  }
+  // Report w from f itself, not from the accumulated steps
+  s.f = s.f.cwiseMax(0.0);
+  s.w = A * s.f + b;
+  s.residual = lcpResidual(A, b, s.f);
+  return s;
+}
+
+LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& options) {
+  validateLcp(A, b, "solveLcpLemke");
+  validateOptions(options, "solveLcpLemke");
+  const Index n = b.size();
+  LcpSolution s;
+  s.f = VecX::Zero(n);
+  // f = 0 already solves it when b >= 0
+  if (n == 0 || b.minCoeff() >= 0.0) {
+    s.w = b;
+    return s;
+  }
+  // Build the tableau [I | -A | -e | b] of w - A f - e z0 = b; variables 0..n-1 are w, n..2n-1 f, 2n z0
+  const Index z0 = 2 * n, rhs = 2 * n + 1;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> T(n, 2 * n + 2);
+  T << MatX::Identity(n, n), -A, -VecX::Ones(n), b;
+  std::vector<Index> basis(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) basis[static_cast<std::size_t>(i)] = i;
+  VecX column(n);
+  const auto pivot = [&](Index row, Index entering) {
+    T.row(row) /= T(row, entering);
+    column = T.col(entering);
+    column(row) = 0.0;
+    T.noalias() -= column * T.row(row);
+    basis[static_cast<std::size_t>(row)] = entering;
+  };
+  const int limit = pivotLimit(options, n);
+
+  // Let z0 enter where b is most negative: z0 = -min b makes every w >= 0 (ties: the last such
+  // row, the lexicographic minimum of the rows of [b | I])
+  Index row = 0;
+  for (Index i = 1; i < n; ++i) {
+    if (b(i) <= b(row)) row = i;
+  }
+  Index leaving = basis[static_cast<std::size_t>(row)];
+  pivot(row, z0);
+  s.iterations = 1;
+
+  // Let the complement of the leaving variable enter until z0 leaves
+  while (leaving != z0) {
+    const Index entering = leaving < n ? leaving + n : leaving - n;
+    if (s.iterations >= limit) {
+      throw LcpFailure("solveLcpLemke: pivot limit " + std::to_string(limit) + " reached");
+    }
+    // Find the leaving row by the minimum ratio test; ties broken lexicographically by the
+    // rows of B^-1 (the tableau's first n columns), which never cycles
+    std::vector<Index> candidates;
+    double best = kInfinity;
+    for (Index i = 0; i < n; ++i) {
+      if (T(i, entering) > options.pivot_tolerance) best = std::min(best, T(i, rhs) / T(i, entering));
+    }
+    if (best == kInfinity) {
+      throw LcpFailure("solveLcpLemke: ray termination after " + std::to_string(s.iterations) + " pivots (variable " +
+                       std::to_string(entering) + " can grow without bound): the LCP has no solution Lemke can find");
+    }
+    for (Index i = 0; i < n; ++i) {
+      if (T(i, entering) > options.pivot_tolerance &&
+          T(i, rhs) / T(i, entering) <= best + options.pivot_tolerance * std::max(1.0, std::abs(best))) {
+        candidates.push_back(i);
+      }
+    }
+    // z0 leaving among the ties ends the method at once
+    row = candidates.front();
+    for (Index i : candidates) {
+      if (basis[static_cast<std::size_t>(i)] == z0) row = i;
+    }
+    for (Index k = 0; k < n && candidates.size() > 1 && basis[static_cast<std::size_t>(row)] != z0; ++k) {
+      double smallest = kInfinity;
+      for (Index i : candidates) smallest = std::min(smallest, T(i, k) / T(i, entering));
+      std::vector<Index> kept;
+      for (Index i : candidates) {
+        if (T(i, k) / T(i, entering) <= smallest + options.pivot_tolerance) kept.push_back(i);
+      }
+      candidates.swap(kept);
+      row = candidates.front();
+    }
+    leaving = basis[static_cast<std::size_t>(row)];
+    pivot(row, entering);
+    ++s.iterations;
+  }
+
+  // Read f from the basic variables (round-off may leave -1e-17: clamp to the contract's f >= 0)
+  for (Index i = 0; i < n; ++i) {
+    const Index variable = basis[static_cast<std::size_t>(i)];
+    if (variable >= n && variable < 2 * n) s.f(variable - n) = std::max(0.0, T(i, rhs));
+  }
+  s.w = A * s.f + b;
+  s.residual = lcpResidual(A, b, s.f);
+  return s;
+}
+
+LcpSolution solveLcpPgs(const MatX& A, const VecX& b, const LcpOptions& options, std::vector<double>* residuals) {
+  validateLcp(A, b, "solveLcpPgs");
+  validateOptions(options, "solveLcpPgs");
+  const Index n = b.size();
+  // Check the diagonal: each update divides by a_ii
+  for (Index i = 0; i < n; ++i) {
+    if (!(A(i, i) > options.pivot_tolerance)) {
+      throw LcpFailure("solveLcpPgs: diagonal entry a_" + std::to_string(i) + std::to_string(i) + " = " +
+                       std::to_string(A(i, i)) + " is not positive");
+    }
+  }
+  LcpSolution s;
+  // Start from the warm start when there is one, else from zero
+  s.f = startingForces(options, n);
+  s.residual = lcpResidual(A, b, s.f);
+  // Rows of A as contiguous columns: Eigen stores A by columns
+  const MatX At = A.transpose();
+  while (s.iterations < options.max_iterations) {
+    // Sweep: solve row i for f_i with the others fixed, then project onto f_i >= 0
+    for (Index i = 0; i < n; ++i) {
+      const double w_i = At.col(i).dot(s.f) + b(i);
+      s.f(i) = std::max(0.0, s.f(i) - w_i / A(i, i));
+    }
+    ++s.iterations;
+    s.residual = lcpResidual(A, b, s.f);
+    if (residuals != nullptr) residuals->push_back(s.residual);
+    if (s.residual <= options.tolerance) break;
+  }
+  s.w = A * s.f + b;
+  return s;
+}
+
+LcpSolution solveLcpPgsCone(const MatX& A, const VecX& b, const VecX& mu, const LcpOptions& options) {
+  validateLcp(A, b, "solveLcpPgsCone");
+  validateOptions(options, "solveLcpPgsCone");
+  const Index n = b.size();
+  if (n % 3 != 0) {
+    throw InvalidInput("solveLcpPgsCone matrix A is " + std::to_string(n) + " x " + std::to_string(n) +
+                       ", not a multiple of 3 (blocks f_n, f_t, f_o per contact)");
+  }
+  requireSize(mu.size(), n / 3, "solveLcpPgsCone friction coefficients mu");
+  for (Index k = 0; k < mu.size(); ++k) {
+    requireNonNegative(mu(k), "solveLcpPgsCone friction coefficient mu(" + std::to_string(k) + ")");
+  }
+  for (Index i = 0; i < n; ++i) {
+    if (!(A(i, i) > options.pivot_tolerance)) {
+      throw LcpFailure("solveLcpPgsCone: diagonal entry a_" + std::to_string(i) + std::to_string(i) + " = " +
+                       std::to_string(A(i, i)) + " is not positive");
+    }
+  }
+  LcpSolution s;
+  // Start from the warm start when there is one, inside the cones, else from zero
+  s.f = startingForces(options, n, true);
+  for (Index c = 0; c < n; c += 3) {
+    const double radius = mu(c / 3) * s.f(c), length = s.f.segment<2>(c + 1).norm();
+    if (length > radius) s.f.segment<2>(c + 1) *= length > 0.0 ? radius / length : 0.0;
+  }
+  s.residual = kInfinity;
+  const MatX At = A.transpose();
+  while (s.iterations < options.max_iterations) {
+    double largest = 0.0;
+    for (Index c = 0; c < n; c += 3) {
+      const Vec3 before = s.f.segment<3>(c);
+      // Update the normal force as in PGS: f_n >= 0
+      s.f(c) = std::max(0.0, s.f(c) - (At.col(c).dot(s.f) + b(c)) / A(c, c));
+      // Update the tangential pair together, aiming at no sliding (w_t = w_o = 0): one step
+      // along -w_T scaled by the largest eigenvalue of its 2 x 2 block, the same for both
+      // entries, so that on the rim friction opposes the sliding w_T exactly (Coulomb)
+      const double a_tt = A(c + 1, c + 1), a_oo = A(c + 2, c + 2), a_to = 0.5 * (A(c + 1, c + 2) + A(c + 2, c + 1));
+      const double lambda = 0.5 * (a_tt + a_oo) + std::hypot(0.5 * (a_tt - a_oo), a_to);
+      const Eigen::Vector2d w_T(At.col(c + 1).dot(s.f) + b(c + 1), At.col(c + 2).dot(s.f) + b(c + 2));
+      s.f.segment<2>(c + 1) -= w_T / lambda;
+      // Project the tangential force onto the disc |(f_t, f_o)| <= mu f_n
+      const double radius = mu(c / 3) * s.f(c);
+      const double length = s.f.segment<2>(c + 1).norm();
+      if (length > radius) s.f.segment<2>(c + 1) *= radius / length;
+      // Measure the change as a change of w (|df_i| a_ii), comparable across contacts
+      for (Index i = 0; i < 3; ++i) largest = std::max(largest, std::abs(s.f(c + i) - before(i)) * A(c + i, c + i));
+    }
+    ++s.iterations;
+    s.residual = largest;
+    if (largest <= options.tolerance) break;
+  }
+  s.w = A * s.f + b;
+  return s;
+}
+
+}  // namespace physlab

@@ -1,0 +1,251 @@
+// Lab 6 graded tests of the contact problem: the matrix A against J M^-1 J^T, Baraff's b against
+// the separation's second derivative found by finite differences, the velocity-level b by hand,
+// and the friction pyramid's LCP against a sliding contact solved by hand.
+#include <cmath>
+
+#include "physlab/resting.hpp"
+#include "support.hpp"
+
+using namespace physlab;
+using namespace physlab::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Mat3 cross(const Vec3& v) {
+  Mat3 m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+// A moving body with random mass, inertia, pose and velocities; its world inertia in I.
+ContactBody randomBody(Mat3& I) {
+  const Mat3 R = randomRotation();
+  I = R * Vec3(uniform(0.2, 2.0), uniform(0.2, 2.0), uniform(0.2, 2.0)).asDiagonal() * R.transpose();
+  ContactBody body;
+  body.x = randomVec3(1.0);
+  body.v = randomVec3(2.0);
+  body.omega = randomVec3(2.0);
+  body.inv_mass = 1.0 / uniform(0.2, 5.0);
+  body.I_inv_world = I.inverse();
+  return body;
+}
+
+ContactBody fixedBody(const Vec3& x) {
+  ContactBody body;
+  body.x = x;
+  return body;
+}
+
+// J M^-1 J^T from the 6-per-body Jacobian, computed here apart from the student's code.
+MatX jacobianProduct(const std::vector<ContactBody>& bodies, const std::vector<ContactRow>& rows) {
+  const Index n = static_cast<Index>(bodies.size());
+  MatX J = MatX::Zero(static_cast<Index>(rows.size()), 6 * n), M_inv = MatX::Zero(6 * n, 6 * n);
+  for (Index i = 0; i < static_cast<Index>(rows.size()); ++i) {
+    const ContactRow& row = rows[i];
+    J.block<1, 3>(i, 6 * row.a) += row.d.transpose();
+    J.block<1, 3>(i, 6 * row.a + 3) += (row.p - bodies[row.a].x).cross(row.d).transpose();
+    J.block<1, 3>(i, 6 * row.b) -= row.d.transpose();
+    J.block<1, 3>(i, 6 * row.b + 3) -= (row.p - bodies[row.b].x).cross(row.d).transpose();
+  }
+  for (Index k = 0; k < n; ++k) {
+    M_inv.block<3, 3>(6 * k, 6 * k) = bodies[k].inv_mass * Mat3::Identity();
+    M_inv.block<3, 3>(6 * k + 3, 6 * k + 3) = bodies[k].I_inv_world;
+  }
+  return J * M_inv * J.transpose();
+}
+
+}  // namespace
+
+TEST_CASE("contact matrix: A equals J M^-1 J^T for random rows among moving and fixed bodies", "[lab06][pts=3]") {
+  std::vector<ContactBody> bodies;
+  Mat3 I;
+  for (int k = 0; k < 4; ++k) bodies.push_back(randomBody(I));
+  bodies.push_back(fixedBody(randomVec3(1.0)));
+  std::vector<ContactRow> rows;
+  for (int i = 0; i < 7; ++i) {
+    const int a = static_cast<int>(uniform(0, 5)) % 5;
+    const int b = (a + 1 + static_cast<int>(uniform(0, 4)) % 4) % 5;
+    rows.push_back({a, b, randomVec3(1.0), randomVec3(1.0).normalized()});
+  }
+  // Rows 5 and 6 on bodies of their own: their coupling with rows on other bodies is exactly 0
+  rows[5] = {0, 1, randomVec3(1.0), randomVec3(1.0).normalized()};
+  rows[6] = {2, 3, randomVec3(1.0), randomVec3(1.0).normalized()};
+  const MatX A = contactMatrix(bodies, rows), expected = jacobianProduct(bodies, rows);
+  REQUIRE(A.rows() == 7);
+  REQUIRE(A.cols() == 7);
+  // The same sums of products in another order: round-off relative to the largest entry.
+  CHECK((A - expected).cwiseAbs().maxCoeff() <= 1e-12 * expected.cwiseAbs().maxCoeff());
+  CHECK(A(5, 6) == 0.0);
+  CHECK(A(6, 5) == 0.0);
+  // Symmetric as J M^-1 J^T is; a_ij and a_ji computed apart may differ in the last bit.
+  CHECK((A - A.transpose()).cwiseAbs().maxCoeff() <= 1e-14 * expected.cwiseAbs().maxCoeff());
+  CHECK_THROWS_AS(contactMatrix(bodies, {{0, 5, Vec3::Zero(), Vec3::UnitZ()}}), InvalidInput);
+  CHECK_THROWS_AS(contactMatrix(bodies, {{-1, 0, Vec3::Zero(), Vec3::UnitZ()}}), InvalidInput);
+  CHECK(contactMatrix(bodies, {}).size() == 0);
+}
+
+TEST_CASE("contact matrix: a sphere on the ground, hand computed", "[lab06][pts=1]") {
+  const double m = uniform(0.5, 3.0), I = uniform(0.1, 1.0), s = uniform(0.05, 0.3), R = 0.5;
+  ContactBody sphere;
+  sphere.x = Vec3(0.0, 0.0, R);
+  sphere.inv_mass = 1.0 / m;
+  sphere.I_inv_world = Mat3::Identity() / I;
+  const std::vector<ContactBody> bodies = {sphere, fixedBody(Vec3::Zero())};
+  // Under the centre nothing turns: a = 1/m. A point off to the side turns it: a = 1/m + s^2/I.
+  const MatX A = contactMatrix(bodies, {{0, 1, Vec3::Zero(), Vec3::UnitZ()}, {0, 1, Vec3(s, 0, 0), Vec3::UnitZ()}});
+  // A few products of exact inputs: round-off.
+  CHECK(A(0, 0) == Approx(1.0 / m).epsilon(1e-14));
+  CHECK(A(1, 1) == Approx(1.0 / m + s * s / I).epsilon(1e-14));
+  CHECK(A(0, 1) == Approx(1.0 / m).epsilon(1e-14));
+}
+
+TEST_CASE("Baraff's b: the second derivative of the separation with no contact force", "[lab06][pts=3]") {
+  // Two moving bodies (or one against a fixed body) with applied forces and torques. Their
+  // motion to second order in t, x(t) = x + v t + F/(2m) t^2 and R(t) = (1 + t W + t^2/2 (W' + W^2)) R,
+  // has the true second derivatives at t = 0, so the central difference of
+  // d(t) = n(t) . (p_a(t) - p_b(t)) with n and the points carried by the bodies gives d''(0).
+  for (const bool b_fixed : {false, true}) {
+    Mat3 I_a, I_b;
+    std::vector<ContactBody> bodies = {randomBody(I_a), randomBody(I_b)};
+    if (b_fixed) {
+      bodies[1] = fixedBody(bodies[1].x);
+      I_b = Mat3::Zero();
+    }
+    std::vector<AppliedLoads> loads(2);
+    for (int k = 0; k < 2; ++k) {
+      loads[k].F = randomVec3(5.0);
+      loads[k].tau = randomVec3(2.0);
+      loads[k].L = (k == 0 ? I_a : I_b) * bodies[k].omega;
+    }
+    const Vec3 p = randomVec3(1.0), n = randomVec3(1.0).normalized();
+    auto motion = [&](int k, double t, const Vec3& body_point) -> Vec3 {
+      const ContactBody& body = bodies[k];
+      const Vec3 omega_dot = body.I_inv_world * (loads[k].tau + loads[k].L.cross(body.omega));
+      const Mat3 W = cross(body.omega);
+      const Mat3 turn = Mat3::Identity() + t * W + 0.5 * t * t * (cross(omega_dot) + W * W);
+      return body.x + t * body.v + 0.5 * t * t * body.inv_mass * loads[k].F + turn * (body_point - body.x);
+    };
+    auto normal = [&](double t) -> Vec3 {
+      const ContactBody& B = bodies[1];
+      const Vec3 omega_dot = B.I_inv_world * (loads[1].tau + loads[1].L.cross(B.omega));
+      const Mat3 W = cross(B.omega);
+      return (Mat3::Identity() + t * W + 0.5 * t * t * (cross(omega_dot) + W * W)) * n;
+    };
+    auto d = [&](double t) { return normal(t).dot(motion(0, t, p) - motion(1, t, p)); };
+    const double delta = 1e-3;
+    const double d_ddot = (d(delta) - 2.0 * d(0.0) + d(-delta)) / (delta * delta);
+    const VecX b = accelerationBias(bodies, loads, {{0, 1, p, n}});
+    REQUIRE(b.size() == 1);
+    // d(t) is a polynomial whose t^3 and t^4 terms leave an O(delta^2) = 1e-6 relative error in
+    // the central difference; round-off adds eps |d| / delta^2, about 1e-10.
+    CHECK(b(0) == Approx(d_ddot).epsilon(1e-4).margin(1e-6));
+  }
+}
+
+TEST_CASE("Baraff's b: a body at rest on the ground feels only gravity; loads must match the bodies", "[lab06][pts=1]") {
+  ContactBody box;
+  box.x = Vec3(0.0, 0.0, 0.1);
+  box.inv_mass = 0.5;
+  box.I_inv_world = Mat3::Identity() * 3.0;
+  const std::vector<ContactBody> bodies = {box, fixedBody(Vec3::Zero())};
+  std::vector<AppliedLoads> loads(2);
+  loads[0].F = Vec3(0.0, 0.0, -2.0 * 9.81);
+  const Vec3 corner(0.3, 0.2, 0.0);
+  const VecX b = accelerationBias(bodies, loads, {{0, 1, corner, Vec3::UnitZ()}, {0, 1, -corner, Vec3::UnitZ()}});
+  // F / m along the normal, nothing turning: exact up to one rounding.
+  CHECK(b(0) == Approx(-9.81).epsilon(1e-15));
+  CHECK(b(1) == Approx(-9.81).epsilon(1e-15));
+  loads.pop_back();
+  CHECK_THROWS_AS(accelerationBias(bodies, loads, {{0, 1, corner, Vec3::UnitZ()}}), InvalidInput);
+}
+
+TEST_CASE("velocity bias: relative velocity along the row less the Baumgarte push, hand computed", "[lab06][pts=2]") {
+  ContactBody ball;
+  ball.x = Vec3(0.0, 0.0, 0.1);
+  ball.v = Vec3(uniform(0.5, 2.0), 0.0, -uniform(0.1, 1.0));
+  ball.omega = Vec3(0.0, uniform(-3.0, 3.0), 0.0);
+  ball.inv_mass = 1.0;
+  ball.I_inv_world = Mat3::Identity() * 250.0;
+  const std::vector<ContactBody> bodies = {ball, fixedBody(Vec3::Zero())};
+  const Vec3 p = Vec3::Zero();
+  const std::vector<ContactRow> rows = {{0, 1, p, Vec3::UnitZ()}, {0, 1, p, Vec3::UnitX()}};
+  const double h = 0.01, beta = 0.2, slop = 0.002, depth = uniform(0.003, 0.02);
+  const VecX b = velocityBias(bodies, rows, Vec3(depth, 0.0, 0.0).head<2>(), h, beta, slop);
+  // The contact point moves at v + omega x (p - x); omega_y turns it along x by omega_y * 0.1.
+  const double slide = ball.v.x() + ball.omega.y() * (-0.1);
+  // A handful of roundings.
+  CHECK(b(0) == Approx(ball.v.z() - beta / h * (depth - slop)).epsilon(1e-13));
+  CHECK(b(1) == Approx(slide).epsilon(1e-13));
+  // Overlap within the slop is left alone.
+  CHECK(velocityBias(bodies, rows, Vec3(0.5 * slop, 0.0, 0.0).head<2>(), h, beta, slop)(0) ==
+        Approx(ball.v.z()).epsilon(1e-15));
+  CHECK_THROWS_AS(velocityBias(bodies, rows, VecX::Zero(3), h, beta, slop), InvalidInput);
+  CHECK_THROWS_AS(velocityBias(bodies, rows, VecX::Zero(2), 0.0, beta, slop), InvalidInput);
+  CHECK_THROWS_AS(velocityBias(bodies, rows, VecX::Zero(2), h, 1.5, slop), InvalidInput);
+  CHECK_THROWS_AS(velocityBias(bodies, rows, VecX::Zero(2), h, beta, -1.0), InvalidInput);
+}
+
+TEST_CASE("friction pyramid: a sliding sphere's hand solution solves the LCP, a wrong friction does not", "[lab06][pts=3]") {
+  // A sphere (m, radius r) sliding at u along d_0 with the step's gravity in its velocity. By hand:
+  // lambda_n = m g h stops the fall; friction mu lambda_n acts along d_2 = -d_0 (beta_2); the
+  // contact point then slides at gamma = u - mu lambda_n (1/m + r^2/I) = u - 3.5 mu g h.
+  const double m = uniform(0.5, 2.0), r = 0.1, I = 0.4 * m * r * r, mu = uniform(0.1, 0.8), g = 9.81, h = 0.01;
+  const double u = uniform(1.0, 3.0);
+  const int k = 4;
+  ContactBody sphere;
+  sphere.x = Vec3(0.0, 0.0, r);
+  sphere.inv_mass = 1.0 / m;
+  sphere.I_inv_world = Mat3::Identity() / I;
+  const std::vector<Vec3> d = tangentDirections(Vec3::UnitZ(), k);
+  sphere.v = u * d[0] - g * h * Vec3::UnitZ();
+  const std::vector<ContactBody> bodies = {sphere, fixedBody(Vec3::Zero())};
+  std::vector<ContactRow> rows = {{0, 1, Vec3::Zero(), Vec3::UnitZ()}};
+  for (const Vec3& direction : d) rows.push_back({0, 1, Vec3::Zero(), direction});
+  const MatX A = jacobianProduct(bodies, rows);
+  VecX b(1 + k);
+  for (std::size_t i = 0; i < rows.size(); ++i) b(static_cast<Index>(i)) = rows[i].d.dot(sphere.v);
+  const LcpProblem lcp = frictionPyramid(A, b, VecX::Constant(1, mu), k);
+  REQUIRE(lcp.A.rows() == 2 + k);
+  REQUIRE(lcp.A.cols() == 2 + k);
+  REQUIRE(lcp.b.size() == 2 + k);
+  const double lambda_n = m * g * h;
+  VecX z = VecX::Zero(2 + k);
+  z(0) = lambda_n;
+  z(1 + 2) = mu * lambda_n;
+  z(1 + k) = u - 3.5 * mu * g * h;
+  // The hand solution is exact up to round-off in products of order 1.
+  CHECK(lcpResidual(lcp.A, lcp.b, z) <= 1e-12);
+  // Friction along the motion, or too little of it, or a wrong sliding speed, is not a solution.
+  VecX wrong = z;
+  std::swap(wrong(1), wrong(1 + 2));
+  CHECK(lcpResidual(lcp.A, lcp.b, wrong) > 1e-3);
+  wrong = z;
+  wrong(1 + 2) *= 0.5;
+  CHECK(lcpResidual(lcp.A, lcp.b, wrong) > 1e-4);
+  wrong = z;
+  wrong(1 + k) += 0.1;
+  CHECK(lcpResidual(lcp.A, lcp.b, wrong) > 1e-3);
+  // Sticking: slow enough to stop within the cone, friction below mu lambda_n and gamma = 0.
+  const double s = 0.5 * 3.5 * mu * g * h;
+  sphere.v = s * d[0] - g * h * Vec3::UnitZ();
+  for (std::size_t i = 0; i < rows.size(); ++i) b(static_cast<Index>(i)) = rows[i].d.dot(sphere.v);
+  const LcpProblem stick = frictionPyramid(A, b, VecX::Constant(1, mu), k);
+  z.setZero();
+  z(0) = lambda_n;
+  z(1 + 2) = s * m / 3.5;
+  CHECK(lcpResidual(stick.A, stick.b, z) <= 1e-12);
+}
+
+TEST_CASE("friction pyramid: sizes that do not fit, k < 3 and negative mu are refused", "[lab06][pts=1]") {
+  const int k = 4;
+  const MatX A = MatX::Identity(2 + 2 * k, 2 + 2 * k);
+  const VecX b = VecX::Zero(2 + 2 * k), mu = VecX::Constant(2, 0.5);
+  CHECK_NOTHROW(frictionPyramid(A, b, mu, k));
+  CHECK_THROWS_AS(frictionPyramid(A, b, mu, 2), InvalidInput);
+  CHECK_THROWS_AS(frictionPyramid(A, b, mu, 3), InvalidInput);
+  CHECK_THROWS_AS(frictionPyramid(A.topLeftCorner(9, 10), b, mu, k), InvalidInput);
+  CHECK_THROWS_AS(frictionPyramid(A, b.head(9), mu, k), InvalidInput);
+  CHECK_THROWS_AS(frictionPyramid(A, b, VecX::Constant(3, 0.5), k), InvalidInput);
+  CHECK_THROWS_AS(frictionPyramid(A, b, Vec3(0.5, -0.1, 0.0).head<2>(), k), InvalidInput);
+}

@@ -1,0 +1,140 @@
+// Lab 6 graded tests of resting contact in a World: statics (total force and torque, the lever
+// rule), stacks and pyramids that stand, the friction ramp against g (sin - mu cos), and the
+// mass-ratio case that ranks the exact solvers above PGS.
+#include <cmath>
+#include <memory>
+
+#include "physlab/resting.hpp"
+#include "support.hpp"
+
+using namespace physlab;
+using namespace physlab::test;
+
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kH = 1.0 / 60.0;
+
+World restingWorld(Scene scene, Formulation formulation, LcpMethod method, int sweeps = 100) {
+  RestingSettings resting;
+  resting.formulation = formulation;
+  resting.method = method;
+  resting.lcp.max_iterations = sweeps;
+  return World(std::move(scene), restingWorldSettings(), std::make_shared<LcpContactSolver>(resting));
+}
+
+// Largest distance of any moving body from where it started [m].
+double largestDrift(const World& world, const std::vector<BodyState>& start) {
+  double drift = 0.0;
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    if (!world.bodies()[i].fixed) drift = std::max(drift, (world.states()[i].x - start[i].x).norm());
+  }
+  return drift;
+}
+
+}  // namespace
+
+TEST_CASE("resting box: the normal forces carry Mg and balance the torque, at any yaw", "[lab06][pts=2]") {
+  for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Lemke}) {
+    World world = restingWorld(restingBox(uniform(-M_PI, M_PI)), Formulation::Acceleration, method);
+    world.step(kH);
+    const double M = world.bodies()[1].mass;
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    for (const Contact& c : world.contacts()) {
+      force += c.j * c.n;
+      torque += (c.p - world.states()[1].x).cross(c.j * c.n);
+    }
+    REQUIRE(world.contacts().size() == 4);
+    // The impulses are the forces times h; exact solvers, but pivoting's regularisation
+    // (RestingSettings::regularization, 1e-9 of A's diagonal) shifts them by about 1e-9.
+    CHECK(force.z() == Approx(M * kG * kH).epsilon(1e-8));
+    CHECK(torque.norm() <= 1e-8 * M * kG * kH);
+    // The forces cancel gravity's pull over the step: the box is still at rest.
+    CHECK(world.velocity(1).norm() <= 1e-9);
+    CHECK(world.angularVelocity(1).norm() <= 1e-9);
+  }
+}
+
+TEST_CASE("plank on two supports: the lever rule Mg b / (a + b) and Mg a / (a + b)", "[lab06][pts=2]") {
+  const double a = uniform(0.1, 0.9), b = uniform(0.1, 0.9);
+  for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Lemke}) {
+    World world = restingWorld(plankOnTwoSupports(a, b), Formulation::Acceleration, method);
+    world.step(kH);
+    double at_a = 0.0, at_b = 0.0;
+    REQUIRE(world.contacts().size() == 2);
+    for (const Contact& c : world.contacts()) (c.p.x() < 0.0 ? at_a : at_b) += c.j / kH;
+    const double Mg = world.bodies()[0].mass * kG;
+    // Two contacts, a 2 x 2 solve: round-off, and pivoting's 1e-9 regularisation.
+    CHECK(at_a == Approx(Mg * b / (a + b)).epsilon(1e-8));
+    CHECK(at_b == Approx(Mg * a / (a + b)).epsilon(1e-8));
+  }
+}
+
+TEST_CASE("stack: 10 boxes stand for 10 s at 60 Hz with drift under 1 mm (velocity level)", "[lab06][pts=3]") {
+  for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Lemke}) {
+    World world = restingWorld(cubeStack(10), Formulation::Velocity, method);
+    const std::vector<BodyState> start = world.states();
+    for (int step = 0; step < 600; ++step) world.step(kH);
+    // The bar for a stack that stands.
+    CHECK(largestDrift(world, start) < 1e-3);
+    // Baumgarte keeps the overlap near the slop: a few slops at most.
+    CHECK(world.diagnostics().max_penetration < 0.01);
+  }
+}
+
+TEST_CASE("pyramid: 5 rows (15 cubes) stand for 10 s at 60 Hz (velocity level)", "[lab06][pts=2]") {
+  for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Pgs}) {
+    World world = restingWorld(cubePyramid(5), Formulation::Velocity, method, 100);
+    const std::vector<BodyState> start = world.states();
+    for (int step = 0; step < 600; ++step) world.step(kH);
+    CAPTURE(lcpMethodName(method), largestDrift(world, start));
+    if (method == LcpMethod::Pivoting) {
+      // The bar for a pyramid that stands, met by the exact solver.
+      CHECK(largestDrift(world, start) < 1e-3);
+    } else {
+      // PGS leaves each layer sinking into the overlap Baumgarte tolerates (slop 2 mm), so the
+      // top may sink up to 5 slops; a pyramid that collapses moves by its cube size, 0.2 m.
+      CHECK(largestDrift(world, start) < 5 * RestingSettings{}.slop);
+    }
+  }
+}
+
+TEST_CASE("friction ramp: blocks stick when tan(theta) < mu and slide at g (sin - mu cos) otherwise", "[lab06][pts=3]") {
+  const double theta = uniform(0.35, 0.6);
+  const std::vector<double> mu = {0.0, 0.5 * std::tan(theta), 0.8 * std::tan(theta), 1.25 * std::tan(theta), 2.0};
+  for (const LcpMethod method : {LcpMethod::Lemke, LcpMethod::Pgs}) {
+    World world = restingWorld(frictionRamp(theta, mu), Formulation::Velocity, method, 200);
+    const std::vector<BodyState> start = world.states();
+    const int steps = 30;
+    for (int step = 0; step < steps; ++step) world.step(kH);
+    const Vec3 downhill = -(Vec3(std::cos(theta), 0.0, std::sin(theta)));
+    for (std::size_t i = 0; i < mu.size(); ++i) {
+      const int body = static_cast<int>(i) + 1;
+      const double expected = std::max(0.0, kG * (std::sin(theta) - mu[i] * std::cos(theta)));
+      // Speed after n steps of symplectic Euler with exact friction: a n h. The pyramid's first
+      // direction is the downhill one, so both cone and pyramid are exact; PGS's 200 sweeps
+      // leave 1e-6 relative.
+      const double speed = world.velocity(body).dot(downhill);
+      CAPTURE(i, mu[i], lcpMethodName(method));
+      CHECK(speed == Approx(expected * steps * kH).margin(1e-6 * kG * steps * kH));
+      if (expected == 0.0) CHECK((world.states()[body].x - start[body].x).norm() < 1e-4);
+    }
+  }
+}
+
+TEST_CASE("mass ratio: pivoting and Lemke hold a 100x heavier box on a light one, 10 PGS sweeps do not", "[lab06][pts=2]") {
+  auto drift = [](LcpMethod method, int sweeps) {
+    World world = restingWorld(heavyOnLight(100.0), Formulation::Velocity, method, sweeps);
+    const std::vector<BodyState> start = world.states();
+    for (int step = 0; step < 120; ++step) world.step(kH);
+    return largestDrift(world, start);
+  };
+  const double pivoting = drift(LcpMethod::Pivoting, 10), lemke = drift(LcpMethod::Lemke, 10),
+               pgs = drift(LcpMethod::Pgs, 10);
+  CAPTURE(pivoting, lemke, pgs);
+  // The exact solvers leave only the Baumgarte-corrected slop.
+  CHECK(pivoting < 1e-3);
+  CHECK(lemke < 1e-3);
+  // PGS's error shrinks by about (1 - 1/101) per sweep here: ten sweeps leave most of it.
+  CHECK(pgs > 10.0 * std::max(pivoting, lemke));
+}
