@@ -2,6 +2,8 @@
 // apart from the student's code.
 #pragma once
 
+#include <algorithm>
+
 #include "physlab/world.hpp"
 #include "support.hpp"
 
@@ -72,6 +74,67 @@ inline Vec3 angularMomentum(const RandomPair& s) {
 inline double kineticEnergy(const RandomPair& s) {
   return 0.5 * (s.m_a * s.A.v.squaredNorm() + s.A.omega.dot(s.I_a * s.A.omega) + s.m_b * s.B.v.squaredNorm() +
                 s.B.omega.dot(s.I_b * s.B.omega));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Oracles of the single-contact formulas, written here from world.hpp apart from the student's
+// code, so that a solver's test does not trust the student's helpers.
+
+/// pdot_A - pdot_B at p, pdot = v + omega x (p - x).
+inline Vec3 oracleRelativeVelocity(const ContactBody& A, const ContactBody& B, const Vec3& p) {
+  return A.v + A.omega.cross(p - A.x) - B.v - B.omega.cross(p - B.x);
+}
+
+/// K along the unit direction d: 1/m_A + 1/m_B + d . (I_A^-1 (r_A x d)) x r_A + (same for B).
+inline double oracleK(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& d) {
+  const Vec3 r_a = p - A.x, r_b = p - B.x;
+  return A.inv_mass + B.inv_mass + d.dot((A.I_inv_world * r_a.cross(d)).cross(r_a)) +
+         d.dot((B.I_inv_world * r_b.cross(d)).cross(r_b));
+}
+
+/// J to A and -J to B at p.
+inline void oracleApply(ContactBody& A, ContactBody& B, const Vec3& p, const Vec3& J) {
+  A.v += A.inv_mass * J;
+  A.omega += A.I_inv_world * (p - A.x).cross(J);
+  B.v -= B.inv_mass * J;
+  B.omega -= B.I_inv_world * (p - B.x).cross(J);
+}
+
+/// The friction impulse that stops the slip along t = v_t / |v_t|, at most j_max long.
+inline Vec3 oracleFriction(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double j_max) {
+  const Vec3 v = oracleRelativeVelocity(A, B, p), v_t = v - v.dot(n) * n;
+  if (v_t.norm() == 0.0) return Vec3::Zero();
+  const Vec3 t = v_t.normalized();
+  return -std::min(v_t.norm() / oracleK(A, B, p, t), j_max) * t;
+}
+
+/// j_t shortened to length j_max when longer.
+inline Vec3 oracleClamp(const Vec3& j_t, double j_max) {
+  return j_t.norm() > j_max ? Vec3(j_t * (j_max / j_t.norm())) : j_t;
+}
+
+/// A random pair (both bodies moving) whose points approach at least at 0.3 m/s: redrawn until
+/// so, so that every seed gives a collision well above the solvers' tolerance.
+inline RandomPair approachingPair() {
+  RandomPair s;
+  do {
+    s = randomPair();
+  } while (vRel(s) > -0.3);
+  return s;
+}
+
+/// Scales every velocity of the pair so that v_rel becomes `target` (< 0).
+inline void scaleToApproach(RandomPair& s, double target) {
+  const double f = target / vRel(s);
+  s.A.v *= f;
+  s.A.omega *= f;
+  s.B.v *= f;
+  s.B.omega *= f;
+}
+
+/// Distance between two bodies' velocities, |dv| + |domega|.
+inline double velocityDistance(const ContactBody& X, const ContactBody& Y) {
+  return (X.v - Y.v).norm() + (X.omega - Y.omega).norm();
 }
 
 }  // namespace physlab::test

@@ -108,3 +108,40 @@ TEST_CASE("friction: below mu j the contact sticks, above it slides with |j_t| =
   CHECK(J_slide.norm() == Approx(j_max).epsilon(1e-12));
   CHECK(J_slide.dot(v_t) == Approx(-j_max * v_t.norm()).epsilon(1e-12));
 }
+
+TEST_CASE("friction: the impulse opposes the tangential slip, stopping it along t or of length j_max", "[lab05][pts=2]") {
+  // Two moving bodies with random inertias: K along t has every rotational term
+  const RandomPair s = approachingPair();
+  const Vec3 v = oracleRelativeVelocity(s.A, s.B, s.p), v_t = v - v.dot(s.n) * s.n;
+  const Vec3 t = v_t.normalized();
+  const double j_stop = v_t.norm() / oracleK(s.A, s.B, s.p, t);
+  INFO("|v_t| = " << v_t.norm() << ", j_stop = " << j_stop);
+  // Sticking: a bound above the stopping impulse keeps it, and the slip along t stops
+  ContactBody A = s.A, B = s.B;
+  const Vec3 J = frictionImpulse(A, B, s.p, s.n, j_stop * uniform(1.2, 3.0));
+  // The same formula evaluated in another order: round-off relative to the impulse.
+  CHECK((J + j_stop * t).norm() <= 1e-10 * j_stop);
+  oracleApply(A, B, s.p, J);
+  // Along t the slip is gone, up to round-off of the speeds involved (~10 m/s).
+  CHECK(std::abs(t.dot(oracleRelativeVelocity(A, B, s.p))) <= 1e-10 * (1.0 + v.norm()));
+  // Sliding: a bound below it is the length, still opposite the slip and in the tangent plane
+  const double j_max = j_stop * uniform(0.1, 0.8);
+  const Vec3 J_slide = frictionImpulse(s.A, s.B, s.p, s.n, j_max);
+  CHECK((J_slide + j_max * t).norm() <= 1e-10 * j_max);  // round-off only
+}
+
+TEST_CASE("penalty: the force is max(0, k depth - d v_rel) along n, never pulling", "[lab05][pts=1]") {
+  const double k = std::pow(10.0, uniform(3.0, 5.0)), d = uniform(1.0, 100.0), depth = uniform(1e-4, 1e-2);
+  const Vec3 n = randomVec3(1.0).normalized();
+  const double spring = k * depth;
+  // Approaching (v_rel < 0): the damper adds to the spring
+  const double approaching = uniform(-2.0, -0.1);
+  // One multiply-add and a scaling: round-off only.
+  CHECK((penaltyForce(depth, approaching, n, k, d) - (spring - d * approaching) * n).norm() <= 1e-12 * (spring - d * approaching));
+  // Separating slowly: the damper takes some of the spring away
+  const double slow = uniform(0.1, 0.9) * spring / d;
+  CHECK((penaltyForce(depth, slow, n, k, d) - (spring - d * slow) * n).norm() <= 1e-12 * spring);
+  // Separating fast: the damper would pull, so there is no force at all (exactly)
+  const double fast = uniform(1.1, 3.0) * spring / d;
+  CHECK(penaltyForce(depth, fast, n, k, d) == Vec3::Zero());
+}

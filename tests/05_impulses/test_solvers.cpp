@@ -1,6 +1,9 @@
 // Lab 5 graded tests of the many-contact solvers on a box hitting the ground on up to four
-// points (Lab 4's reference narrow phase makes the manifold): what each solver guarantees.
+// points (Lab 4's reference narrow phase makes the manifold): what each solver guarantees; one
+// sweep on one random two-body point and the first sweeps on a box against oracles written here
+// from world.hpp; the restitution threshold; and the bookkeeping of accumulated impulses.
 #include <cmath>
+#include <limits>
 
 #include "impulse_support.hpp"
 
@@ -9,7 +12,8 @@ using namespace physlab::test;
 
 namespace {
 
-// A box slightly tilted, a millimetre into the ground, moving down with random velocities.
+// A box tilted by up to `tilt` [rad] about x and y, a millimetre into the ground, moving down
+// with random velocities (a tilt of 5e-4 keeps all four corners in the ground).
 struct BoxOnGround {
   std::vector<ContactBody> bodies;  // box, ground
   std::vector<Contact> contacts;
@@ -17,12 +21,12 @@ struct BoxOnGround {
   Mat3 I = Mat3::Identity();  // world inertia
 };
 
-BoxOnGround boxOnGround(double epsilon, double mu) {
+BoxOnGround boxOnGround(double epsilon, double mu, double tilt = 0.05) {
   BoxOnGround s;
   const Vec3 half(uniform(0.1, 0.5), uniform(0.1, 0.5), uniform(0.1, 0.5));
   s.m = uniform(0.5, 5.0);
   Pose pose;
-  pose.q = Quat(Eigen::AngleAxisd(uniform(-0.05, 0.05), Vec3::UnitX()) * Eigen::AngleAxisd(uniform(-0.05, 0.05), Vec3::UnitY()));
+  pose.q = Quat(Eigen::AngleAxisd(uniform(-tilt, tilt), Vec3::UnitX()) * Eigen::AngleAxisd(uniform(-tilt, tilt), Vec3::UnitY()));
   pose.x = Vec3(0.0, 0.0, half.z() - 1e-3);
   const Mat3 R = pose.q.toRotationMatrix();
   const Mat3 I_body = Vec3(half.y() * half.y() + half.z() * half.z(), half.x() * half.x() + half.z() * half.z(),
@@ -149,4 +153,357 @@ TEST_CASE("simultaneous impulses: accumulated impulses stay clamped, j >= 0 and 
     any_friction = any_friction || c.j_t.norm() > 0.0;
   }
   CHECK(any_friction);  // the box slides at up to 2 m/s: friction must act somewhere
+}
+
+namespace {
+
+// One contact between the two moving bodies of a random pair, as classify leaves it.
+Contact oneContact(const RandomPair& s, double epsilon, double mu) {
+  Contact c;
+  c.a = 0;
+  c.b = 1;
+  c.p = s.p;
+  c.n = s.n;
+  c.epsilon = epsilon;
+  c.mu = mu;
+  c.v_rel_minus = vRel(s);
+  c.kind = ContactKind::Colliding;
+  return c;
+}
+
+// The friction bound, relative to the normal impulse j, that makes the point slide (< 1 of
+// the stopping impulse) or stick (> 1), for the bodies after their normal impulse.
+double frictionRatio(const ContactBody& A, const ContactBody& B, const Contact& c, double j, double fraction) {
+  return fraction * oracleFriction(A, B, c.p, c.n, std::numeric_limits<double>::infinity()).norm() / j;
+}
+
+// Changes of momentum of the box since `box0`, against the accumulated impulses of the
+// contacts: m dv = sum (j n + j_t), I domega = sum r x (j n + j_t).
+void checkImpulseBalance(const ContactBody& box0, const ContactBody& box, double m, const Mat3& I,
+                         const std::vector<Contact>& contacts) {
+  Vec3 P = Vec3::Zero(), L = Vec3::Zero();
+  double size = 0.0;
+  for (const Contact& c : contacts) {
+    const Vec3 J = c.j * c.n + c.j_t;
+    P += J;
+    L += (c.p - box.x).cross(J);
+    size += J.norm();
+  }
+  INFO("sum of impulses " << P.transpose() << ", their moment " << L.transpose());
+  // Sums of a few hundred impulses at most: round-off relative to their total size.
+  CHECK((m * (box.v - box0.v) - P).norm() <= 1e-10 * (1.0 + size));
+  CHECK((I * (box.omega - box0.omega) - L).norm() <= 1e-10 * (1.0 + size));
+}
+
+}  // namespace
+
+TEST_CASE("sequential impulses: one sweep on one point is the full impulse, then friction clamped to mu j", "[lab05][pts=2]") {
+  // Sliding (the bound is part of the stopping impulse) and sticking (it is more)
+  for (const double fraction : {uniform(0.2, 0.8), uniform(1.2, 3.0)}) {
+    const RandomPair s = approachingPair();
+    const double epsilon = uniform(0.1, 1.0);
+    // The oracle: v_rel above the threshold bounces with epsilon, j = -(1 + epsilon) v_rel / K
+    ContactBody A = s.A, B = s.B;
+    const double j = -(1.0 + epsilon) * vRel(s) / oracleK(A, B, s.p, s.n);
+    oracleApply(A, B, s.p, j * s.n);
+    const double mu = frictionRatio(A, B, oneContact(s, epsilon, 0.0), j, fraction);
+    const Vec3 j_t = oracleFriction(A, B, s.p, s.n, mu * j);
+    oracleApply(A, B, s.p, j_t);
+    // The solver, allowed one sweep
+    std::vector<ContactBody> bodies = {s.A, s.B};
+    std::vector<Contact> contacts = {oneContact(s, epsilon, mu)};
+    Settings settings;
+    settings.iterations = 1;
+    INFO("fraction of the stopping impulse " << fraction << ", v_rel " << vRel(s) << ", j " << j);
+    CHECK(solveSequential(bodies, contacts, settings) == 1);
+    // The same formulas evaluated in another order: round-off relative to the impulses
+    // (~10 N s) and the speeds (~10 m/s).
+    CHECK(contacts[0].j == Approx(j).epsilon(1e-10));
+    CHECK((contacts[0].j_t - j_t).norm() <= 1e-10 * j);
+    CHECK(velocityDistance(bodies[0], A) <= 1e-10 * (1.0 + j));
+    CHECK(velocityDistance(bodies[1], B) <= 1e-10 * (1.0 + j));
+  }
+}
+
+TEST_CASE("sequential impulses: a point approaching slower than the restitution threshold does not bounce", "[lab05][pts=1]") {
+  Settings settings;
+  const double epsilon = uniform(0.5, 1.0);
+  // Slower than the threshold: epsilon = 0, the point ends at v_rel = 0
+  RandomPair slow = approachingPair();
+  scaleToApproach(slow, -uniform(0.2, 0.8) * settings.restitution_threshold);
+  std::vector<ContactBody> bodies = {slow.A, slow.B};
+  std::vector<Contact> contacts = {oneContact(slow, epsilon, 0.0)};
+  solveSequential(bodies, contacts, settings);
+  slow.A = bodies[0];
+  slow.B = bodies[1];
+  // v_rel is linear in j: round-off relative to the speeds (~0.1 m/s).
+  CHECK(std::abs(vRel(slow)) <= 1e-12);
+  // Faster than the threshold: it bounces with -epsilon v_rel
+  RandomPair fast = approachingPair();
+  const double before = -uniform(2.0, 20.0) * settings.restitution_threshold;
+  scaleToApproach(fast, before);
+  bodies = {fast.A, fast.B};
+  contacts = {oneContact(fast, epsilon, 0.0)};
+  solveSequential(bodies, contacts, settings);
+  fast.A = bodies[0];
+  fast.B = bodies[1];
+  CHECK(vRel(fast) == Approx(-epsilon * before).epsilon(1e-10));  // round-off only
+}
+
+TEST_CASE("sequential impulses: the accumulated j and j_t account for every change of momentum", "[lab05][pts=1]") {
+  BoxOnGround s = boxOnGround(uniform(0.0, 1.0), uniform(0.1, 1.0));
+  REQUIRE(s.contacts.size() >= 1);
+  const ContactBody box0 = s.bodies[0];
+  Settings settings;
+  settings.iterations = static_cast<int>(uniform(1, 60));  // (friction may keep it sweeping)
+  const int sweeps = solveSequential(s.bodies, s.contacts, settings);
+  INFO(s.contacts.size() << " points, " << sweeps << " sweeps");
+  CHECK(sweeps >= 1);
+  CHECK(sweeps <= settings.iterations);
+  // Every point approached at the start: some point took an impulse (a solver doing nothing would
+  // balance trivially)
+  double total = 0.0;
+  for (const Contact& c : s.contacts) total += c.j;
+  CHECK(total > 0.0);
+  checkImpulseBalance(box0, s.bodies[0], s.m, s.I, s.contacts);
+}
+
+TEST_CASE("simultaneous impulses: one sweep on one point is its warm start, its correction, then its friction", "[lab05][pts=2]") {
+  // Sliding and sticking, as in the sequential test
+  for (const double fraction : {uniform(0.2, 0.8), uniform(1.2, 3.0)}) {
+    const RandomPair s = approachingPair();
+    const double epsilon = uniform(0.1, 1.0);
+    Contact c = oneContact(s, epsilon, 0.0);
+    // Impulses carried over from the last step, a part of the answer
+    ContactBody A = s.A, B = s.B;
+    const double K = oracleK(A, B, s.p, s.n);
+    const double j0 = uniform(0.2, 0.8) * -(1.0 + epsilon) * c.v_rel_minus / K;
+    const Vec3 j_t0 = uniform(0.05, 0.2) * j0 * s.n.cross(randomVec3(1.0)).normalized();
+    // The oracle: apply the warm start, then aim at -epsilon v_rel_minus from there
+    oracleApply(A, B, s.p, j0 * s.n + j_t0);
+    const double v_rel = s.n.dot(oracleRelativeVelocity(A, B, s.p));
+    const double j = std::max(0.0, j0 + (-epsilon * c.v_rel_minus - v_rel) / K);
+    // Friction sees this point's normal correction
+    oracleApply(A, B, s.p, (j - j0) * s.n);
+    const Vec3 j_t_free = j_t0 + oracleFriction(A, B, s.p, s.n, std::numeric_limits<double>::infinity());
+    c.mu = fraction * j_t_free.norm() / j;
+    const Vec3 j_t = oracleClamp(j_t_free, c.mu * j);
+    oracleApply(A, B, s.p, j_t - j_t0);
+    // The solver, allowed one sweep
+    c.j = j0;
+    c.j_t = j_t0;
+    std::vector<ContactBody> bodies = {s.A, s.B};
+    std::vector<Contact> contacts = {c};
+    Settings settings;
+    settings.method = ResponseMethod::Simultaneous;
+    settings.iterations = 1;
+    INFO("fraction of the stopping impulse " << fraction << ", v_rel " << c.v_rel_minus << ", j " << j);
+    CHECK(solveSimultaneous(bodies, contacts, settings) == 1);
+    // The same formulas evaluated in another order: round-off relative to the impulses
+    // (~10 N s) and the speeds (~10 m/s).
+    CHECK(contacts[0].j == Approx(j).epsilon(1e-10));
+    CHECK((contacts[0].j_t - j_t).norm() <= 1e-10 * j);
+    CHECK(velocityDistance(bodies[0], A) <= 1e-10 * (1.0 + j));
+    CHECK(velocityDistance(bodies[1], B) <= 1e-10 * (1.0 + j));
+  }
+}
+
+TEST_CASE("simultaneous impulses: a point approaching slower than the restitution threshold does not bounce", "[lab05][pts=1]") {
+  Settings settings;
+  settings.method = ResponseMethod::Simultaneous;
+  const double epsilon = uniform(0.5, 1.0);
+  // Slower than the threshold: the target is v_rel = 0
+  RandomPair slow = approachingPair();
+  scaleToApproach(slow, -uniform(0.2, 0.8) * settings.restitution_threshold);
+  std::vector<ContactBody> bodies = {slow.A, slow.B};
+  std::vector<Contact> contacts = {oneContact(slow, epsilon, 0.0)};
+  solveSimultaneous(bodies, contacts, settings);
+  slow.A = bodies[0];
+  slow.B = bodies[1];
+  // One point, no friction: the first correction is exact, up to round-off of ~0.1 m/s.
+  CHECK(std::abs(vRel(slow)) <= 1e-12);
+  // Faster than the threshold: it bounces with -epsilon v_rel_minus
+  RandomPair fast = approachingPair();
+  const double before = -uniform(2.0, 20.0) * settings.restitution_threshold;
+  scaleToApproach(fast, before);
+  bodies = {fast.A, fast.B};
+  contacts = {oneContact(fast, epsilon, 0.0)};
+  solveSimultaneous(bodies, contacts, settings);
+  fast.A = bodies[0];
+  fast.B = bodies[1];
+  CHECK(vRel(fast) == Approx(-epsilon * before).epsilon(1e-10));  // round-off only
+}
+
+TEST_CASE("simultaneous impulses: the warm start and the accumulated j, j_t account for every change of momentum", "[lab05][pts=1]") {
+  const double mu = uniform(0.1, 1.0);
+  BoxOnGround s = boxOnGround(uniform(0.0, 1.0), mu);
+  REQUIRE(s.contacts.size() >= 1);
+  // Impulses carried over from the last step, inside the cone: applied first, then accumulated
+  for (Contact& c : s.contacts) {
+    c.j = uniform(0.0, 0.5) * s.m;
+    c.j_t = uniform(0.0, 1.0) * mu * c.j * c.n.cross(randomVec3(1.0)).normalized();
+  }
+  const ContactBody box0 = s.bodies[0];
+  Settings settings;
+  settings.method = ResponseMethod::Simultaneous;
+  settings.iterations = static_cast<int>(uniform(1, 60));  // (friction may keep it sweeping)
+  const std::vector<Contact> warm = s.contacts;
+  const int sweeps = solveSimultaneous(s.bodies, s.contacts, settings);
+  INFO(s.contacts.size() << " points, " << sweeps << " sweeps");
+  CHECK(sweeps >= 1);
+  CHECK(sweeps <= settings.iterations);
+  // Random warm impulses are not the answer: the sweeps changed them (a solver applying only the
+  // warm start would balance trivially)
+  double changed = 0.0;
+  for (std::size_t k = 0; k < warm.size(); ++k) changed += std::abs(s.contacts[k].j - warm[k].j);
+  CHECK(changed > 0.0);
+  checkImpulseBalance(box0, s.bodies[0], s.m, s.I, s.contacts);
+}
+
+TEST_CASE("simultaneous impulses: frictionless, a point that keeps an impulse ends at v_rel = 0 (complementarity)", "[lab05][pts=1]") {
+  BoxOnGround s = boxOnGround(0.0, 0.0);
+  REQUIRE(s.contacts.size() >= 1);
+  Settings settings;
+  settings.method = ResponseMethod::Simultaneous;
+  settings.iterations = 100000;
+  settings.tolerance = 1e-10;
+  solveSimultaneous(s.bodies, s.contacts, settings);
+  double total = 0.0;
+  for (const Contact& c : s.contacts) total += c.j;
+  for (const Contact& c : s.contacts) {
+    INFO("j " << c.j << " of " << total << ", v_rel " << vRelAt(s, c));
+    // Jacobi stops within a small multiple of the 1e-10 tolerance of the fixed point, where
+    // j > 0 means v_rel = 0 and v_rel > 0 means j = 0: 1e-8 m/s and 1e-6 of the total impulse.
+    CHECK(vRelAt(s, c) >= -1e-8);
+    if (c.j > 1e-6 * total) CHECK(vRelAt(s, c) <= 1e-8);
+  }
+}
+
+namespace {
+
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+
+// The sequential solver of world.hpp, written here with the oracles: sweeps in order, the full
+// impulse to a point approaching now, friction accumulated inside the cone.
+int oracleSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
+  int sweeps = 0;
+  bool changed = true;
+  while (changed && sweeps < settings.iterations) {
+    ++sweeps;
+    changed = false;
+    for (Contact& c : contacts) {
+      ContactBody &A = bodies[c.a], &B = bodies[c.b];
+      const double v_rel = c.n.dot(oracleRelativeVelocity(A, B, c.p));
+      if (v_rel < -settings.tolerance) {
+        changed = true;
+        const double epsilon = v_rel < -settings.restitution_threshold ? c.epsilon : 0.0;
+        const double j = -(1.0 + epsilon) * v_rel / oracleK(A, B, c.p, c.n);
+        oracleApply(A, B, c.p, j * c.n);
+        c.j += j;
+      }
+      if (c.mu > 0.0 && c.j > 0.0) {
+        const Vec3 j_t = oracleClamp(c.j_t + oracleFriction(A, B, c.p, c.n, kUnbounded), c.mu * c.j);
+        const Vec3 change = j_t - c.j_t;
+        oracleApply(A, B, c.p, change);
+        c.j_t = j_t;
+        const double size = change.norm();
+        if (size > 0.0 && size * oracleK(A, B, c.p, change / size) > settings.tolerance) changed = true;
+      }
+    }
+  }
+  return sweeps;
+}
+
+// The simultaneous solver of world.hpp: warm start, then Jacobi sweeps from the start-of-sweep
+// velocities with shares 1 / (most points on either body), accumulated and clamped.
+int oracleSimultaneous(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
+  std::vector<int> points_on(bodies.size(), 0);
+  for (const Contact& c : contacts) {
+    if (bodies[c.a].inv_mass > 0.0) ++points_on[c.a];
+    if (bodies[c.b].inv_mass > 0.0) ++points_on[c.b];
+  }
+  for (const Contact& c : contacts) oracleApply(bodies[c.a], bodies[c.b], c.p, c.j * c.n + c.j_t);
+  int sweeps = 0;
+  while (sweeps < settings.iterations) {
+    ++sweeps;
+    const std::vector<ContactBody> start = bodies;
+    std::vector<Vec3> change(contacts.size());
+    double largest = 0.0;
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      Contact& c = contacts[k];
+      ContactBody A = start[c.a], B = start[c.b];
+      const double share = 1.0 / std::max({1, points_on[c.a], points_on[c.b]});
+      const double target = c.v_rel_minus < -settings.restitution_threshold ? -c.epsilon * c.v_rel_minus : 0.0;
+      const double K = oracleK(A, B, c.p, c.n);
+      const double j = std::max(0.0, c.j + share * (target - c.n.dot(oracleRelativeVelocity(A, B, c.p))) / K);
+      const double dj = j - c.j;
+      c.j = j;
+      Vec3 dj_t = Vec3::Zero();
+      if (c.mu > 0.0) {
+        oracleApply(A, B, c.p, dj * c.n);
+        const Vec3 j_t = oracleClamp(c.j_t + share * oracleFriction(A, B, c.p, c.n, kUnbounded), c.mu * c.j);
+        dj_t = j_t - c.j_t;
+        c.j_t = j_t;
+      }
+      change[k] = dj * c.n + dj_t;
+      largest = std::max(largest, K * (std::abs(dj) + dj_t.norm()));
+    }
+    for (std::size_t k = 0; k < contacts.size(); ++k) oracleApply(bodies[contacts[k].a], bodies[contacts[k].b], contacts[k].p, change[k]);
+    if (largest <= settings.tolerance) break;
+  }
+  return sweeps;
+}
+
+// The solver's contacts and bodies against the oracle's, after the same sweeps.
+void checkSameSweeps(const BoxOnGround& student, const BoxOnGround& oracle) {
+  const ContactBody &box = student.bodies[0], &expected = oracle.bodies[0];
+  double size = 1.0;
+  for (const Contact& c : oracle.contacts) size += c.j + c.j_t.norm();
+  INFO("box v " << box.v.transpose() << ", expected " << expected.v.transpose());
+  // The same formulas in another order over a few sweeps: round-off relative to the impulses
+  // (~10 N s) and speeds (~10 m/s) involved.
+  CHECK(velocityDistance(box, expected) <= 1e-10 * size);
+  for (std::size_t k = 0; k < oracle.contacts.size(); ++k) {
+    INFO("point " << k << ": j " << student.contacts[k].j << ", expected " << oracle.contacts[k].j);
+    CHECK(std::abs(student.contacts[k].j - oracle.contacts[k].j) <= 1e-10 * size);
+    CHECK((student.contacts[k].j_t - oracle.contacts[k].j_t).norm() <= 1e-10 * size);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("sequential impulses: the first sweeps on a box are the contract's, point after point", "[lab05][pts=2]") {
+  BoxOnGround s = boxOnGround(uniform(0.0, 1.0), uniform(0.1, 1.0), 5e-4);  // flat: four points
+  REQUIRE(s.contacts.size() == 4);
+  BoxOnGround oracle = s;
+  Settings settings;
+  settings.iterations = static_cast<int>(uniform(2, 7));  // a few sweeps, mostly before convergence
+  const int expected = oracleSequential(oracle.bodies, oracle.contacts, settings);
+  INFO(s.contacts.size() << " points, " << settings.iterations << " sweeps allowed, " << expected << " expected");
+  CHECK(solveSequential(s.bodies, s.contacts, settings) == expected);
+  checkSameSweeps(s, oracle);
+}
+
+TEST_CASE("simultaneous impulses: the first sweeps on a box are Jacobi's, with shares and clamps", "[lab05][pts=2]") {
+  // From rest (every point's correction positive at first) and from last step's impulses
+  for (const bool warm : {false, true}) {
+    const double mu = uniform(0.1, 1.0);
+    BoxOnGround s = boxOnGround(uniform(0.0, 1.0), mu, 5e-4);  // flat: four points, shares of 1/4
+    REQUIRE(s.contacts.size() == 4);
+    // Warm: last step's impulses on half of the points. The first point's is far more than the
+    // box needs (alone it lifts the point at > 10 m/s, against at most ~4 m/s of approach): its
+    // correction must be negative, and the accumulated j (not the correction) is what stays >= 0
+    for (std::size_t k = 0; warm && k < s.contacts.size(); k += 2) {
+      s.contacts[k].j = (k == 0 ? uniform(10.0, 15.0) : uniform(0.0, 0.5)) * s.m;
+      s.contacts[k].j_t = uniform(0.0, 1.0) * mu * s.contacts[k].j * s.contacts[k].n.cross(randomVec3(1.0)).normalized();
+    }
+    BoxOnGround oracle = s;
+    Settings settings;
+    settings.method = ResponseMethod::Simultaneous;
+    settings.iterations = static_cast<int>(uniform(2, 7));  // a few sweeps, mostly before convergence
+    const int expected = oracleSimultaneous(oracle.bodies, oracle.contacts, settings);
+    INFO((warm ? "warm" : "cold") << ", " << settings.iterations << " sweeps allowed, " << expected << " expected");
+    CHECK(solveSimultaneous(s.bodies, s.contacts, settings) == expected);
+    checkSameSweeps(s, oracle);
+  }
 }
