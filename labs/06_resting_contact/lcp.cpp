@@ -35,7 +35,8 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // Add d to the clamped set when it pushes, else to the free set (f_d = 0, w_d >= 0)
   // TODO(student): f_d > 0: d joins C; otherwise NC.
   // Report w from f itself, not from the accumulated steps
-  // TODO(student): w = A f + b, residual = lcpResidual(A, b, f), iterations = pivots.
+  // TODO(student): w = A f + b, residual = lcpResidual(A, b, f), iterations = pivots; LcpFailure("... lost accuracy ...")
+  // TODO(student): when residual > sqrt(pivot_tolerance) * max(1, max |b_i|).
   notImplemented("solveLcpPivoting", "Lab 6 handout, section 3", A, b, options);
 }
 
@@ -53,11 +54,15 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   // TODO(student): w_i <-> f_i; count pivots, LcpFailure past max(options.max_iterations, 10 n).
   // Find the leaving row by the minimum ratio test; ties broken lexicographically by the
   // rows of B^-1 (the tableau's first n columns), which never cycles
-  // TODO(student): rows with entry > pivot_tolerance in the entering column; none: throw LcpFailure("... ray termination ...").
+  // Entries within round-off of zero (which grows with n), relative to the column's largest, are
+  // no pivots: dividing by one would wreck the tableau (redundant contacts make such columns)
+  // TODO(student): eligible rows: entry > pivot_tolerance * n * max(1, largest |entry| of the column);
+  // TODO(student): none eligible: throw LcpFailure("... ray termination ...").
   // z0 leaving among the ties ends the method at once
   // TODO(student): otherwise compare the tied rows' entries in columns 0, 1, ... divided by the pivot entry, keeping the smallest.
   // Read f from the basic variables (round-off may leave -1e-17: clamp to the contract's f >= 0)
-  // TODO(student): f_i = right-hand side of the row where f_i is basic, 0 when nonbasic; w = A f + b; residual.
+  // TODO(student): f_i = right-hand side of the row where f_i is basic, 0 when nonbasic; w = A f + b; residual;
+  // TODO(student): LcpFailure("... lost accuracy ...") as in pivoting.
   notImplemented("solveLcpLemke", "Lab 6 handout, section 4", A, b, options);
 }
 

@@ -27,6 +27,15 @@ void validateOptions(const LcpOptions& options, const std::string& what) {
   requireFinite(options.initial, what + " options.initial");
 }
 
+// An exact method whose round-off wrecked its answer says so rather than return a wrong f.
+void requireAccurate(const LcpSolution& s, const VecX& b, const LcpOptions& options, const std::string& what) {
+  const double bound = std::sqrt(options.pivot_tolerance) * std::max(1.0, b.cwiseAbs().maxCoeff());
+  if (!(s.residual <= bound)) {
+    throw LcpFailure(what + ": lost accuracy after " + std::to_string(s.iterations) + " pivots (residual " +
+                     std::to_string(s.residual) + ")");
+  }
+}
+
 // PGS's first f: the warm start with negative entries raised to 0 when it has n entries, else 0.
 // (The cone's tangential entries may be negative; it projects them itself.)
 VecX startingForces(const LcpOptions& options, Index n, bool cone = false) {
@@ -140,6 +149,7 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   s.f = s.f.cwiseMax(0.0);
   s.w = A * s.f + b;
   s.residual = lcpResidual(A, b, s.f);
+  requireAccurate(s, b, options, "solveLcpPivoting");
   return s;
 }
 
@@ -190,15 +200,19 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
     // rows of B^-1 (the tableau's first n columns), which never cycles
     std::vector<Index> candidates;
     double best = kInfinity;
+    // Entries within round-off of zero (which grows with n), relative to the column's largest, are
+    // no pivots: dividing by one would wreck the tableau (redundant contacts make such columns)
+    const double eligible =
+        options.pivot_tolerance * static_cast<double>(n) * std::max(1.0, T.col(entering).cwiseAbs().maxCoeff());
     for (Index i = 0; i < n; ++i) {
-      if (T(i, entering) > options.pivot_tolerance) best = std::min(best, T(i, rhs) / T(i, entering));
+      if (T(i, entering) > eligible) best = std::min(best, T(i, rhs) / T(i, entering));
     }
     if (best == kInfinity) {
       throw LcpFailure("solveLcpLemke: ray termination after " + std::to_string(s.iterations) + " pivots (variable " +
                        std::to_string(entering) + " can grow without bound): the LCP has no solution Lemke can find");
     }
     for (Index i = 0; i < n; ++i) {
-      if (T(i, entering) > options.pivot_tolerance &&
+      if (T(i, entering) > eligible &&
           T(i, rhs) / T(i, entering) <= best + options.pivot_tolerance * std::max(1.0, std::abs(best))) {
         candidates.push_back(i);
       }
@@ -230,6 +244,7 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   }
   s.w = A * s.f + b;
   s.residual = lcpResidual(A, b, s.f);
+  requireAccurate(s, b, options, "solveLcpLemke");
   return s;
 }
 

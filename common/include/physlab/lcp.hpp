@@ -99,7 +99,9 @@ double lcpResidual(const MatX& A, const VecX& b, const VecX& f);
 /// with \f$f_d\f$: e.g. A = [[1, -1], [-1, 1]], b < 0, which has no solution), when the clamped block
 /// \f$A_{CC}\f$ is singular, and when the pivot limit is reached. InvalidInput as validateLcp().
 /// Where the solution is unique (A positive definite, or a P-matrix) the result is it up to
-/// round-off; on singular PSD A it is one of the solutions (w and \f$A f\f$ are unique).
+/// round-off; on singular PSD A it is one of the solutions (w and \f$A f\f$ are unique). An answer
+/// whose lcpResidual() exceeds \f$\sqrt{\text{pivot\_tolerance}}\, \max(1, \max_i |b_i|)\f$ (round-off
+/// wrecked it) is never returned: LcpFailure ("... lost accuracy ...").
 /// Handout: Lab 6, section 3.
 LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& options = {});
 
@@ -111,6 +113,8 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
 /// termination ...") when no variable can leave (the LCP has no solution Lemke can find; on
 /// positive semidefinite or P-matrices, it has none at all) and on reaching the pivot limit.
 /// InvalidInput as validateLcp().
+/// Entries of the entering column below pivot_tolerance times n times its largest magnitude
+/// count as zero (no pivot: the tableau's round-off grows with n). Like pivoting, never returns an answer that lost accuracy (LcpFailure).
 /// Handout: Lab 6, section 4.
 LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& options = {});
 
