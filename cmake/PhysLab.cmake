@@ -6,7 +6,10 @@
 #   tests/NN_name, tests/hidden/NN_name   graded tests -> test_NN_name (ref), test_NN_name_labs
 #   demos/NN_name, bench/NN_name          -> demo_NN_name(_labs), bench_NN_name
 # Isolation: a stage's libraries link the *reference* of every earlier stage (when solutions/
-# is present), so a student's bug in lab 1 costs no points in lab 3.
+# is present), so a student's bug in lab 1 costs no points in lab 3. A published student copy has
+# no solutions/ but may carry prebuilt/libphyslab_NN_ref.a, the compiled reference of the stages
+# that later ones build on (`./physlab publish`): then later stages link those, and a student can
+# work on lab 6 before lab 1 is written. PHYSLAB_PREBUILT=OFF links the student's own instead.
 
 set(PHYSLAB_ROOT "${CMAKE_CURRENT_LIST_DIR}/..")
 get_filename_component(PHYSLAB_ROOT "${PHYSLAB_ROOT}" ABSOLUTE)
@@ -15,6 +18,7 @@ if(EXISTS "${PHYSLAB_ROOT}/solutions")
   set(PHYSLAB_HAVE_SOLUTIONS ON)
 endif()
 set_property(GLOBAL PROPERTY PHYSLAB_STAGES "")
+option(PHYSLAB_PREBUILT "Link later labs against prebuilt/ reference libraries when present (student copies)" ON)
 
 set(PHYSLAB_WARNING_FLAGS -Wall -Wextra -Wpedantic -Wshadow)
 
@@ -114,8 +118,19 @@ function(physlab_add_lab stage)
   set_property(GLOBAL PROPERTY PHYSLAB_DEPENDS_${stage} ${closure})
   set(deps "")
   foreach(dep IN LISTS ARG_DEPENDS)
-    list(APPEND deps physlab_${dep}_ref)
+    if(TARGET physlab_${dep}_prebuilt)
+      list(APPEND deps physlab_${dep}_prebuilt)
+    else()
+      list(APPEND deps physlab_${dep}_ref)
+    endif()
   endforeach()
+  # A student copy's compiled reference of this stage, for the stages that build on it
+  set(prebuilt "${PHYSLAB_ROOT}/prebuilt/libphyslab_${stage}_ref.a")
+  if(NOT PHYSLAB_HAVE_SOLUTIONS AND PHYSLAB_PREBUILT AND EXISTS "${prebuilt}")
+    add_library(physlab_${stage}_prebuilt STATIC IMPORTED GLOBAL)
+    set_target_properties(physlab_${stage}_prebuilt PROPERTIES IMPORTED_LOCATION "${prebuilt}")
+    target_link_libraries(physlab_${stage}_prebuilt INTERFACE physlab_common ${deps})
+  endif()
 
   # Framework code of the stage, compiled once and shared by both implementations.
   file(GLOB framework CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/common/src/${stage}/*.cpp")
