@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "lcp_support.hpp"
 
 using namespace physlab;
@@ -293,4 +295,59 @@ TEST_CASE("pgs cone: after any number of sweeps f_n >= 0 and |f_T| <= mu f_n", "
     any_friction = any_friction || s.f.segment<2>(3 * c + 1).norm() > 0.0;
   }
   CHECK(any_friction);  // random tangential demands: some contact must use friction
+}
+
+TEST_CASE("pgs cone: one sweep from a warm start, computed here: clamp and disc-project the start, normal then disc step", "[lab06][pts=2]") {
+  // The documented sweep, contact by contact: the start's negative normals count as 0 and its
+  // tangential pairs are scaled onto their discs; then f_n <- max(0, f_n - w_n / a_nn), then
+  // f_T <- f_T - w_T / lambda_max(symmetrised tangential block), scaled onto |f_T| <= mu f_n.
+  const Index k = static_cast<Index>(uniform(2, 5));
+  MatX A = coneMatrix(k);
+  // A slightly non-symmetric tangential block: lambda is that of its symmetric part
+  for (Index c = 0; c < k; ++c) A(3 * c + 1, 3 * c + 2) += uniform(-0.05, 0.05);
+  VecX b(3 * k), mu(k), start(3 * k);
+  for (Index i = 0; i < 3 * k; ++i) {
+    b(i) = uniform(-2.0, 2.0);
+    start(i) = uniform(-1.0, 1.0);
+  }
+  for (Index c = 0; c < k; ++c) {
+    mu(c) = uniform(0.2, 1.0);
+    start(3 * c) = c == 0 ? -uniform(0.1, 1.0) : uniform(0.5, 2.0);  // contact 0 starts pulling
+    b(3 * c) = -uniform(0.5, 2.0);  // every contact pressed: the discs have room
+  }
+  VecX f = start;
+  for (Index c = 0; c < k; ++c) {
+    f(3 * c) = std::max(0.0, f(3 * c));
+    const double radius = mu(c) * f(3 * c), length = f.segment<2>(3 * c + 1).norm();
+    if (length > radius) f.segment<2>(3 * c + 1) *= length > 0.0 ? radius / length : 0.0;
+  }
+  double largest = 0.0;
+  for (Index c = 0; c < k; ++c) {
+    const Vec3 before = f.segment<3>(3 * c);
+    f(3 * c) = std::max(0.0, f(3 * c) - (A.row(3 * c).dot(f) + b(3 * c)) / A(3 * c, 3 * c));
+    const Eigen::Matrix2d block = A.block<2, 2>(3 * c + 1, 3 * c + 1);
+    const double lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(0.5 * (block + block.transpose())).eigenvalues()(1);
+    const Eigen::Vector2d w_T(A.row(3 * c + 1).dot(f) + b(3 * c + 1), A.row(3 * c + 2).dot(f) + b(3 * c + 2));
+    f.segment<2>(3 * c + 1) -= w_T / lambda;
+    const double radius = mu(c) * f(3 * c), length = f.segment<2>(3 * c + 1).norm();
+    if (length > radius) f.segment<2>(3 * c + 1) *= radius / length;
+    for (Index i = 0; i < 3; ++i) largest = std::max(largest, std::abs(f(3 * c + i) - before(i)) * A(3 * c + i, 3 * c + i));
+  }
+  LcpOptions options;
+  options.initial = start;
+  options.max_iterations = 1;
+  options.tolerance = 0.0;
+  const LcpSolution s = solveLcpPgsCone(A, b, mu, options);
+  INFO(k << " contacts, f " << s.f.transpose() << "\nexpected " << f.transpose());
+  CHECK(s.iterations == 1);
+  // The same operations on O(1) numbers (the eigenvalue by another formula): round-off only
+  CHECK((s.f - f).cwiseAbs().maxCoeff() <= 1e-12);
+  CHECK(s.residual == Approx(largest).epsilon(1e-10));  // the sweep's largest |df_i| a_ii
+  CHECK((s.w - (A * s.f + b)).cwiseAbs().maxCoeff() <= 1e-12);  // w = A f + b, round-off of O(1) sums
+  // Without a start (or one of the wrong size) the sweep begins at 0: a different first sweep
+  options.initial = VecX::Ones(3 * k + 1);
+  const LcpSolution cold = solveLcpPgsCone(A, b, mu, options);
+  options.initial = VecX();
+  CHECK(cold.f == solveLcpPgsCone(A, b, mu, options).f);
+  CHECK((cold.f - f).cwiseAbs().maxCoeff() > 1e-6);
 }
