@@ -272,7 +272,8 @@ LcpSolution solveLcpPgs(const MatX& A, const VecX& b, const LcpOptions& options,
       s.f(i) = std::max(0.0, s.f(i) - w_i / A(i, i));
     }
     ++s.iterations;
-    s.residual = lcpResidual(A, b, s.f);
+    // lcpResidual()'s value without its input checks, which validateLcp() made once already
+    s.residual = (A * s.f + b).cwiseMin(s.f).cwiseAbs().maxCoeff();
     if (residuals != nullptr) residuals->push_back(s.residual);
     if (s.residual <= options.tolerance) break;
   }
