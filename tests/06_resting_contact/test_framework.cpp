@@ -27,11 +27,19 @@ TEST_CASE("resting settings: bad values are refused, every value is printed", "[
   settings.regularization = std::nan("");
   CHECK_THROWS_WITH(LcpContactSolver(settings), Contains("regularization"));
   settings = RestingSettings{};
+  settings.matrix_free = true;  // the default method is pivoting: no matrix-free path
+  CHECK_THROWS_WITH(LcpContactSolver(settings), Contains("matrix_free"));
+  settings.method = LcpMethod::Pgs;
+  settings.formulation = Formulation::Acceleration;
+  CHECK_THROWS_WITH(LcpContactSolver(settings), Contains("matrix_free"));
+  settings.formulation = Formulation::Velocity;
+  CHECK_THAT(LcpContactSolver(settings).describe(), Contains("matrix_free=yes"));
+  settings = RestingSettings{};
   settings.method = LcpMethod::Lemke;
   settings.formulation = Formulation::Acceleration;
   const std::string line = LcpContactSolver(settings).describe();
   CHECK_THAT(line, Contains("formulation=acceleration") && Contains("lcp=Lemke") && Contains("baumgarte=0.2") &&
-                       Contains("slop=0.002") && Contains("pyramid_directions=4"));
+                       Contains("slop=0.002") && Contains("pyramid_directions=4") && Contains("matrix_free=no"));
   const World world(restingBox(0.0), restingWorldSettings(), std::make_shared<LcpContactSolver>(settings));
   CHECK_THAT(world.describe(), Contains("restitution_threshold=1") && Contains("resting: formulation=acceleration"));
 }

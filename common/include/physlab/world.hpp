@@ -38,7 +38,6 @@
 
 #include <cstdint>
 #include <iosfwd>
-#include <map>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -318,7 +317,13 @@ class World {
   std::vector<ContactBody> contact_bodies_;
   std::vector<BoxPair> pairs_;
   std::vector<Contact> contacts_;
-  std::map<std::tuple<int, int, std::uint32_t>, std::pair<double, Vec3>> last_impulses_;
+  // Last step's impulses by (A, B, feature id), sorted for binary search: refilled in place
+  struct LastImpulse {
+    std::tuple<int, int, std::uint32_t> key;
+    double j;
+    Vec3 j_t;
+  };
+  std::vector<LastImpulse> last_impulses_;
   std::vector<int> bounded_, planes_;
   std::vector<Aabb> boxes_;
   std::unique_ptr<BroadPhase> broad_phase_;

@@ -231,7 +231,9 @@ void World::computeContacts() {
   PhaseTimer timer(times_.narrow_phase);
   // Keep the last step's impulses by (A, B, feature id) for warm starting
   last_impulses_.clear();
-  for (const Contact& c : contacts_) last_impulses_[{c.a, c.b, c.id}] = {c.j, c.j_t};
+  for (const Contact& c : contacts_) last_impulses_.push_back({{c.a, c.b, c.id}, c.j, c.j_t});
+  std::sort(last_impulses_.begin(), last_impulses_.end(),
+            [](const LastImpulse& x, const LastImpulse& y) { return x.key < y.key; });
   contacts_.clear();
   for (const BoxPair& pair : pairs_) {
     const int a = pair.first, b = pair.second;
@@ -303,8 +305,13 @@ void World::classifyContacts() {
     const bool warm = settings_.method == ResponseMethod::Simultaneous ||
                       (resting_solver_ && c.kind == ContactKind::Resting);
     if (settings_.warm_start && warm) {
-      const auto last = last_impulses_.find({c.a, c.b, c.id});
-      if (last != last_impulses_.end()) std::tie(c.j, c.j_t) = last->second;
+      const std::tuple<int, int, std::uint32_t> key{c.a, c.b, c.id};
+      const auto last = std::lower_bound(last_impulses_.begin(), last_impulses_.end(), key,
+                                         [](const LastImpulse& x, const auto& k) { return x.key < k; });
+      if (last != last_impulses_.end() && last->key == key) {
+        c.j = last->j;
+        c.j_t = last->j_t;
+      }
     }
   }
 }

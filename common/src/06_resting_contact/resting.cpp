@@ -2,6 +2,7 @@
 // resting points, asks the students' functions for the LCP of the chosen formulation, solves it
 // with the chosen method and applies the forces (or impulses) it finds.
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "physlab/error.hpp"
@@ -31,7 +32,8 @@ std::string RestingSettings::toString() const {
   out << "formulation=" << formulationName(formulation) << " lcp=" << lcpMethodName(method)
       << " max_iterations=" << lcp.max_iterations << " tolerance=" << lcp.tolerance
       << " pivot_tolerance=" << lcp.pivot_tolerance << " pyramid_directions=" << pyramid_directions
-      << " baumgarte=" << baumgarte << " slop=" << slop << " regularization=" << regularization;
+      << " baumgarte=" << baumgarte << " slop=" << slop << " regularization=" << regularization
+      << " matrix_free=" << (matrix_free ? "yes" : "no");
   return out.str();
 }
 
@@ -64,6 +66,9 @@ LcpContactSolver::LcpContactSolver(RestingSettings settings) : settings_(setting
   if (!(settings_.regularization >= 0.0 && settings_.regularization < 1.0)) {
     throw InvalidInput("resting settings regularization must be in [0, 1)");
   }
+  if (settings_.matrix_free && (settings_.method != LcpMethod::Pgs || settings_.formulation != Formulation::Velocity)) {
+    throw InvalidInput("resting settings matrix_free needs method PGS at the velocity level");
+  }
 }
 
 std::string LcpContactSolver::describe() const { return settings_.toString(); }
@@ -71,6 +76,7 @@ std::string LcpContactSolver::describe() const { return settings_.toString(); }
 int LcpContactSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
                             const std::vector<int>& resting, const std::vector<BodyDescription>& descriptions,
                             const std::vector<BodyState>& states, const Vec3& gravity, double h) {
+  if (settings_.matrix_free) return solveConeMatrixFree(bodies, contacts, resting, h);
   const bool velocity_level = settings_.formulation == Formulation::Velocity;
   const Index m = static_cast<Index>(resting.size());
   VecX mu(m);
@@ -175,6 +181,106 @@ int LcpContactSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contac
     }
   }
   return solution.iterations;
+}
+
+// solveLcpPgsCone() on the rows (n, t, o) of every resting point, with w = b + J dv kept through
+// per-body velocity changes instead of A f: a row's update touches only its two bodies.
+int LcpContactSolver::solveConeMatrixFree(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
+                                          const std::vector<int>& resting, double h) {
+  const double beta_h = settings_.baumgarte / h;
+  points_.resize(resting.size());
+  dv_.assign(bodies.size(), Vec3::Zero());
+  dw_.assign(bodies.size(), Vec3::Zero());
+  // Rows, their Jacobians, diagonals and biases; the warm start inside the cone, applied
+  for (std::size_t k = 0; k < resting.size(); ++k) {
+    const Contact& c = contacts[static_cast<std::size_t>(resting[k])];
+    PointRows& pt = points_[k];
+    const ContactBody& A = bodies[static_cast<std::size_t>(c.a)];
+    const ContactBody& B = bodies[static_cast<std::size_t>(c.b)];
+    pt.a = c.a;
+    pt.b = c.b;
+    pt.mu = c.mu;
+    // tangentDirections(n, 4)'s first two, without its vector
+    Index axis = 0;
+    c.n.cwiseAbs().minCoeff(&axis);
+    pt.d[0] = c.n;
+    pt.d[1] = c.n.cross(Vec3::Unit(axis)).normalized();
+    pt.d[2] = c.n.cross(pt.d[1]);
+    const Vec3 r_a = c.p - A.x, r_b = c.p - B.x;
+    const Vec3 v_rel = A.v + A.omega.cross(r_a) - B.v - B.omega.cross(r_b);
+    for (int i = 0; i < 3; ++i) {
+      pt.ang_a[i] = r_a.cross(pt.d[i]);
+      pt.ang_b[i] = r_b.cross(pt.d[i]);
+      pt.turn_a[i] = A.I_inv_world * pt.ang_a[i];
+      pt.turn_b[i] = B.I_inv_world * pt.ang_b[i];
+      pt.diag[i] = A.inv_mass + B.inv_mass + pt.ang_a[i].dot(pt.turn_a[i]) + pt.ang_b[i].dot(pt.turn_b[i]);
+      if (!(pt.diag[i] > settings_.lcp.pivot_tolerance)) {
+        throw LcpFailure("matrix-free cone PGS: diagonal entry of row " + std::to_string(3 * k + i) + " = " +
+                         std::to_string(pt.diag[i]) + " is not positive");
+      }
+      pt.bias[i] = pt.d[i].dot(v_rel);
+    }
+    pt.bias[0] -= beta_h * std::max(0.0, c.depth - settings_.slop);
+
+    const double a_to = (A.inv_mass + B.inv_mass) * pt.d[1].dot(pt.d[2]) + pt.ang_a[1].dot(pt.turn_a[2]) +
+                        pt.ang_b[1].dot(pt.turn_b[2]);
+    pt.lambda_T = 0.5 * (pt.diag[1] + pt.diag[2]) + std::hypot(0.5 * (pt.diag[1] - pt.diag[2]), a_to);
+    pt.f = Vec3(std::max(0.0, c.j), c.j_t.dot(pt.d[1]), c.j_t.dot(pt.d[2]));
+    const double radius = pt.mu * pt.f(0), length = pt.f.tail<2>().norm();
+    if (length > radius) pt.f.tail<2>() *= length > 0.0 ? radius / length : 0.0;
+    for (int i = 0; i < 3; ++i) {
+      dv_[static_cast<std::size_t>(pt.a)] += A.inv_mass * pt.f(i) * pt.d[i];
+      dw_[static_cast<std::size_t>(pt.a)] += pt.f(i) * pt.turn_a[i];
+      dv_[static_cast<std::size_t>(pt.b)] -= B.inv_mass * pt.f(i) * pt.d[i];
+      dw_[static_cast<std::size_t>(pt.b)] -= pt.f(i) * pt.turn_b[i];
+    }
+  }
+  // w of row i with the velocity changes so far, and an impulse change on it applied
+  auto w = [&](const PointRows& pt, int i) {
+    return pt.bias[i] + pt.d[i].dot(dv_[static_cast<std::size_t>(pt.a)] - dv_[static_cast<std::size_t>(pt.b)]) +
+           pt.ang_a[i].dot(dw_[static_cast<std::size_t>(pt.a)]) - pt.ang_b[i].dot(dw_[static_cast<std::size_t>(pt.b)]);
+  };
+  auto push = [&](const PointRows& pt, int i, double delta) {
+    dv_[static_cast<std::size_t>(pt.a)] += bodies[static_cast<std::size_t>(pt.a)].inv_mass * delta * pt.d[i];
+    dw_[static_cast<std::size_t>(pt.a)] += delta * pt.turn_a[i];
+    dv_[static_cast<std::size_t>(pt.b)] -= bodies[static_cast<std::size_t>(pt.b)].inv_mass * delta * pt.d[i];
+    dw_[static_cast<std::size_t>(pt.b)] -= delta * pt.turn_b[i];
+  };
+  // The sweeps of solveLcpPgsCone()
+  int sweeps = 0;
+  last_residual_ = std::numeric_limits<double>::infinity();
+  while (sweeps < settings_.lcp.max_iterations) {
+    double largest = 0.0;
+    for (PointRows& pt : points_) {
+      const double f_n = std::max(0.0, pt.f(0) - w(pt, 0) / pt.diag[0]);
+      push(pt, 0, f_n - pt.f(0));
+      largest = std::max(largest, std::abs(f_n - pt.f(0)) * pt.diag[0]);
+      pt.f(0) = f_n;
+      Eigen::Vector2d f_T = pt.f.tail<2>() - Eigen::Vector2d(w(pt, 1), w(pt, 2)) / pt.lambda_T;
+      const double radius = pt.mu * f_n, length = f_T.norm();
+      if (length > radius) f_T *= radius / length;
+      for (int i = 1; i < 3; ++i) {
+        push(pt, i, f_T(i - 1) - pt.f(i));
+        largest = std::max(largest, std::abs(f_T(i - 1) - pt.f(i)) * pt.diag[i]);
+        pt.f(i) = f_T(i - 1);
+      }
+    }
+    ++sweeps;
+    last_residual_ = largest;
+    if (largest <= settings_.lcp.tolerance) break;
+  }
+  // Apply the impulses found; store them for next step's warm start
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].v += dv_[i];
+    bodies[i].omega += dw_[i];
+  }
+  for (std::size_t k = 0; k < resting.size(); ++k) {
+    Contact& c = contacts[static_cast<std::size_t>(resting[k])];
+    const PointRows& pt = points_[k];
+    c.j = pt.f(0);
+    c.j_t = pt.f(1) * pt.d[1] + pt.f(2) * pt.d[2];
+  }
+  return sweeps;
 }
 
 }  // namespace physlab
