@@ -86,12 +86,18 @@ bool closestOnTetrahedron(Simplex& s) {
   Simplex best;
   double best_d2 = std::numeric_limits<double>::infinity();
   bool outside_any = false;
+  // A flat tetrahedron (the new vertex in the triangle's plane, to round-off) encloses nothing:
+  // its side tests are noise, so every face is a candidate
+  double extent = 0.0;
+  for (int i = 1; i < 4; ++i) extent = std::max(extent, (s.v[i].w - s.v[0].w).norm());
+  const double volume = (s.v[1].w - s.v[0].w).dot((s.v[2].w - s.v[0].w).cross(s.v[3].w - s.v[0].w));
+  const bool flat = std::abs(volume) <= 1e-10 * extent * extent * extent;
   for (const auto& f : faces) {
     const Vec3 &a = s.v[f[0]].w, &b = s.v[f[1]].w, &c = s.v[f[2]].w, &d = s.v[f[3]].w;
     const Vec3 n = (b - a).cross(c - a);
     // The origin is beyond this face when it and the fourth vertex are on opposite sides
     const double side_origin = -n.dot(a), side_d = n.dot(d - a);
-    if (side_origin * side_d > 0.0) continue;
+    if (!flat && side_origin * side_d > 0.0) continue;
     outside_any = true;
     Simplex face = s;
     closestOnTriangle(face, f[0], f[1], f[2]);

@@ -104,6 +104,29 @@ TEST_CASE("gjk: random convex pairs are no farther apart than any two sampled su
   }
 }
 
+TEST_CASE("gjk: polyhedra a hair apart, faces parallel, are never reported overlapping", "[lab04][pts=1]") {
+  // Face against face gives simplices whose new vertex lies in the plane of the others (a flat
+  // tetrahedron): its side tests are round-off, and a GJK that trusts them claims contact.
+  int trials = 0;
+  for (const Kind kb : {Kind::Box, Kind::Tetrahedron}) {
+    for (int trial = 0; trial < 400; ++trial, ++trials) {
+      const Shape a = randomShape(Kind::Box);
+      Shape b = randomShape(kb);
+      Pose pa = randomPose(1.0), pb = randomPose(1.0);
+      pb.q = pa.q;  // the same orientation: A's faces parallel to B's (boxes), or to a face normal
+      const Vec3 u = pa.q * Vec3::Unit(static_cast<Index>(uniform(0.0, 2.999)));
+      const double gap = uniform(1e-5, 1e-3);
+      placeAlong(a, pa, b, pb, u, gap);
+      const DistanceResult d = gjkDistance(a, pa, b, pb);
+      INFO(pairName(a, b) << ", trial " << trial << ", gap " << gap);
+      REQUIRE_FALSE(d.overlap);
+      // Apart by at least the gap along u (a separating plane), to GJK's relative tolerance.
+      CHECK(d.distance >= gap - 1e-7);
+    }
+  }
+  CHECK(trials == 800);
+}
+
 TEST_CASE("gjk: overlapping shapes are reported as overlapping", "[lab04][pts=1]") {
   const Kind kinds[] = {Kind::Sphere, Kind::Box, Kind::Capsule, Kind::Tetrahedron};
   for (Kind ka : kinds) {
