@@ -11,10 +11,14 @@
 // - PhysLab PGS / pivoting / Lemke: World::step with restingWorldSettings() (restitution threshold
 //   1 m/s, so every touching point is resting; no position correction) and an LcpContactSolver
 //   at the velocity level (RestingSettings printed): sort-and-sweep broad phase, Lab 4's box
-//   manifolds (4 points per face), one DENSE LCP over every resting row, Baumgarte 0.2 beyond a
-//   2 mm slop, symplectic Euler. PGS solves the friction cone (3 rows per point) with at most 20
-//   sweeps; pivoting solves the normal rows only (it cannot take friction); Lemke solves the
-//   friction pyramid (4 directions: 6 unknowns per point).
+//   manifolds (4 points per face), one LCP over every resting row, Baumgarte 0.2 beyond a 1 mm
+//   slop (the pyramid's top sinks by about one slop per layer: 30 layers of 2 mm, the default,
+//   would use up the 5 cm bar), symplectic Euler. PGS solves the friction cone (3 rows per point)
+//   matrix-free (RestingSettings::matrix_free: per-body velocity changes, the students' cone PGS
+//   iterates bit for bit) with 20 sweeps (Bullet's and QuickStep's iterations) or 100, and dense
+//   (the students' contactMatrix() and solveLcpPgsCone(), 20 sweeps); pivoting solves the normal
+//   rows only (it cannot take friction); Lemke solves the friction pyramid (4 directions: 6
+//   unknowns per point).
 // - Bullet: stepSimulation(h, 0), one internal step of h: btDbvtBroadphase, btBoxBoxDetector
 //   (a persistent manifold of up to 4 points per pair), btSequentialImpulseConstraintSolver with
 //   20 iterations, warm starting, split impulse, two friction directions per point, friction the
@@ -23,7 +27,7 @@
 // - ODE dWorldStep / dWorldQuickStep: dSpaceCollide over a hash space with dCollide (at most 4
 //   points per pair), one contact joint per point (dContactApprox1: a friction pyramid of two
 //   directions scaled by the normal force, mu = 0.5, no bounce), the world's ERP 0.2 and CFM
-//   (ODE's defaults, printed), contact surface layer = our 2 mm slop, auto-disable (sleeping) off;
+//   (ODE's defaults, printed), contact surface layer = our 1 mm slop, auto-disable (sleeping) off;
 //   then dWorldStep (a dense Dantzig LCP per island, O(m^3)) or dWorldQuickStep (PGS, 20
 //   iterations, ODE's default over-relaxation, printed); then the contact joints are emptied.
 //
@@ -78,6 +82,7 @@ constexpr double kStands = 0.05;    // the issue's bar: no cube moves more than 
 constexpr double kPitch = 0.22;     // cubePyramid's spacing: edge 0.2 m plus the 0.02 m gap [m]
 constexpr int kIterations = 20;     // PGS sweeps (ours, ODE QuickStep) and Bullet's iterations
 constexpr int kMaxContactsPerPair = 4;
+constexpr std::size_t kDense = 2;   // the engines' index of our dense PGS
 
 // One engine stepping one scene; position(i) of body i of the scene (fixed bodies included).
 class Simulation {
@@ -92,18 +97,22 @@ class Simulation {
 
 // ----- PhysLab ---------------------------------------------------------------------------------
 
-RestingSettings oursSettings(LcpMethod method) {
+constexpr double kSlop = 0.001;     // our Baumgarte slop and ODE's surface layer [m]
+
+RestingSettings oursSettings(LcpMethod method, int sweeps = kIterations, bool matrix_free = false) {
   RestingSettings s;
   s.formulation = Formulation::Velocity;
   s.method = method;
-  s.lcp.max_iterations = kIterations;
+  s.lcp.max_iterations = sweeps;
+  s.matrix_free = matrix_free;
+  s.slop = kSlop;
   return s;
 }
 
 class OurSimulation : public Simulation {
  public:
-  OurSimulation(const Scene& scene, LcpMethod method)
-      : world_(scene, restingWorldSettings(), std::make_shared<LcpContactSolver>(oursSettings(method))) {}
+  explicit OurSimulation(const Scene& scene, const RestingSettings& settings)
+      : world_(scene, restingWorldSettings(), std::make_shared<LcpContactSolver>(settings)) {}
   void step(double h) override { world_.step(h); }
   Vec3 position(int i) const override { return world_.states()[static_cast<std::size_t>(i)].x; }
   int size() const override { return static_cast<int>(world_.states().size()); }
@@ -128,10 +137,10 @@ btScalar minRestitution(const btCollisionObject* a, const btCollisionObject* b) 
 
 class BulletSimulation : public Simulation {
  public:
-  explicit BulletSimulation(const Scene& scene) {
+  explicit BulletSimulation(const Scene& scene, int iterations = kIterations) {
     world_.setGravity(toBt(restingWorldSettings().gravity));
     btContactSolverInfo& info = world_.getSolverInfo();
-    info.m_numIterations = kIterations;
+    info.m_numIterations = iterations;
     info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) add(scene.bodies[i], scene.states[i]);
   }
@@ -206,7 +215,7 @@ void countOdeMessage(int, const char* format, va_list args) {
 
 class OdeSimulation : public Simulation {
  public:
-  OdeSimulation(const Scene& scene, bool quick) : quick_(quick) {
+  OdeSimulation(const Scene& scene, bool quick, int iterations = kIterations) : quick_(quick) {
     world_ = dWorldCreate();
     space_ = dHashSpaceCreate(nullptr);
     joints_ = dJointGroupCreate(0);
@@ -214,7 +223,7 @@ class OdeSimulation : public Simulation {
     dWorldSetGravity(world_, g.x(), g.y(), g.z());
     dWorldSetContactSurfaceLayer(world_, oursSettings(LcpMethod::Pgs).slop);
     dWorldSetAutoDisableFlag(world_, 0);
-    dWorldSetQuickStepNumIterations(world_, kIterations);
+    dWorldSetQuickStepNumIterations(world_, iterations);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) add(scene.bodies[i], scene.states[i]);
   }
   ~OdeSimulation() override {
@@ -511,16 +520,23 @@ int main(int argc, char** argv) {
     // Wall budgets per size: the full run is to stay near 8 minutes on the development machine
     const double ours_budget = options.quick ? 3.0 : 45.0, peer_budget = options.quick ? 3.0 : 30.0;
 
+    const double exact_budget = options.quick ? 3.0 : 15.0;
     std::vector<Engine> engines = {
-        {"PhysLab PGS (cone, 20 sweeps)", "PhysLab PGS", "linespoints pt 7", 2.0, ours_budget,
-         [](const Scene& s) { return std::make_unique<OurSimulation>(s, LcpMethod::Pgs); }},
-        {"PhysLab pivoting (no friction)", "PhysLab pivoting", "linespoints pt 7", 3.0, options.quick ? 3.0 : 15.0,
-         [](const Scene& s) { return std::make_unique<OurSimulation>(s, LcpMethod::Pivoting); }},
-        {"PhysLab Lemke (pyramid, 4 directions)", "PhysLab Lemke", "linespoints pt 7", 3.0, options.quick ? 3.0 : 15.0,
-         [](const Scene& s) { return std::make_unique<OurSimulation>(s, LcpMethod::Lemke); }},
+        {"PhysLab PGS matrix-free (cone, 20 sweeps)", "PhysLab PGS 20 sweeps", "linespoints pt 7", 1.0, ours_budget,
+         [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Pgs, kIterations, true)); }},
+        {"PhysLab PGS matrix-free (cone, 100 sweeps)", "PhysLab PGS 100 sweeps", "linespoints pt 7 dt 2", 1.0,
+         ours_budget,
+         [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Pgs, 100, true)); }},
+        {"PhysLab PGS dense (students' A and cone PGS, 20 sweeps)", "PhysLab PGS dense", "linespoints pt 7 dt 3", 2.0,
+         options.quick ? 3.0 : 25.0,
+         [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Pgs)); }},
+        {"PhysLab pivoting (no friction)", "PhysLab pivoting", "linespoints pt 7", 3.0, exact_budget,
+         [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Pivoting)); }},
+        {"PhysLab Lemke (pyramid, 4 directions)", "PhysLab Lemke", "linespoints pt 7", 3.0, exact_budget,
+         [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Lemke)); }},
     };
-    std::cout << "PhysLab: " << restingWorldSettings() << "\n  resting (PGS): " << oursSettings(LcpMethod::Pgs).toString()
-              << "\n";
+    std::cout << "PhysLab: " << restingWorldSettings()
+              << "\n  resting (PGS): " << oursSettings(LcpMethod::Pgs, kIterations, true).toString() << "\n";
     int bullet_index = -1;
 #ifdef PHYSLAB_HAVE_BULLET
     gCalculateCombinedRestitutionCallback = &minRestitution;
@@ -569,7 +585,8 @@ int main(int argc, char** argv) {
                   << outcome(r, steps, reach) << std::endl;
         runs[e].push_back(r);
       }
-      if (runs[0][s].run) splits.push_back(splitResting(scene));
+      // The dense path's split only where it ran: at 465 cubes its matrix alone is 930 MB
+      splits.push_back(runs[kDense][s].steps > 0 ? splitResting(scene) : Split{});
     }
 
     Table table({"cubes", "engine", "steps run (of " + std::to_string(steps) + ")", "ms per step",
@@ -601,18 +618,20 @@ int main(int argc, char** argv) {
     table.add({"-", "ODE", "not installed", "-", "-", "-", "-", "-", "-", "-"});
 #endif
 
-    // Where our PGS step goes: World's phases, and inside the resting solver the dense contact
-    // matrix against the cone PGS on the same rows.
-    Table phases({"cubes", "rows (3 per point)", "dense A [MB]", "step [ms]", "narrow phase [ms]", "resting solver [ms]",
-                  "of which contactMatrix() [ms]", "solveLcpPgsCone(), 20 sweeps [ms]"});
-    for (std::size_t s = 0, k = 0; s < rows.size(); ++s) {
-      if (!runs[0][s].run) continue;
+    // Where our matrix-free PGS step goes (World's phases), and what the dense path pays on the
+    // same rows: the contact matrix and the students' cone PGS.
+    Table phases({"cubes", "rows (3 per point)", "step, matrix-free 20 sweeps [ms]", "narrow phase [ms]",
+                  "resting solver [ms]", "dense A [MB]", "dense: contactMatrix() [ms]",
+                  "dense: solveLcpPgsCone(), 20 sweeps [ms]"});
+    for (std::size_t s = 0; s < rows.size(); ++s) {
       const Run& r = runs[0][s];
-      const Split& split = splits[k++];
-      phases.add({std::to_string(rows[s] * (rows[s] + 1) / 2), std::to_string(split.rows),
-                  fmt(8e-6 * split.rows * static_cast<double>(split.rows)), fmt(1e3 * r.per_step()),
-                  fmt(1e3 * r.phases.narrow_phase), fmt(1e3 * r.phases.resting), fmt(1e3 * split.matrix),
-                  fmt(1e3 * split.solve)});
+      if (r.steps == 0) continue;
+      const Split& split = splits[s];
+      const bool dense = split.rows > 0;
+      phases.add({std::to_string(rows[s] * (rows[s] + 1) / 2), std::to_string(3 * r.contacts), fmt(1e3 * r.per_step()),
+                  fmt(1e3 * r.phases.narrow_phase), fmt(1e3 * r.phases.resting),
+                  dense ? fmt(8e-6 * split.rows * static_cast<double>(split.rows)) : "-",
+                  dense ? fmt(1e3 * split.matrix) : "not run", dense ? fmt(1e3 * split.solve) : "not run"});
     }
 
     Chart chart("Box pyramids at h = 1/60 s: cost of a step", "number of cubes", "time per step [ms]");
@@ -633,6 +652,59 @@ int main(int argc, char** argv) {
     std::cout << "\nLab 6 benchmark: where PhysLab's PGS step goes (ms per step)\n";
     phases.print(std::cout);
 
+    // Work against precision on one pyramid: each engine's iteration count swept, largest drift
+    // against the time per step (the bar: 5 cm)
+    const int wp_rows = options.quick ? 3 : 20;
+    const Scene wp_scene = cubePyramid(wp_rows);
+    const int wp_cubes = wp_rows * (wp_rows + 1) / 2;
+    struct Sweep {
+      std::string label, style;
+      std::vector<int> counts;
+      std::function<std::unique_ptr<Simulation>(const Scene&, int)> make;
+    };
+    std::vector<Sweep> sweeps = {
+        {"PhysLab PGS matrix-free (cone), sweeps", "linespoints pt 7",
+         options.quick ? std::vector<int>{5, 20} : std::vector<int>{5, 10, 20, 30, 50, 70, 100},
+         [](const Scene& sc, int n) { return std::make_unique<OurSimulation>(sc, oursSettings(LcpMethod::Pgs, n, true)); }},
+    };
+#ifdef PHYSLAB_HAVE_BULLET
+    sweeps.push_back({"Bullet (sleeping off), iterations", "linespoints pt 5",
+                      options.quick ? std::vector<int>{5, 20} : std::vector<int>{10, 20, 50, 100, 200},
+                      [](const Scene& sc, int n) { return std::make_unique<BulletSimulation>(sc, n); }});
+#endif
+#ifdef PHYSLAB_HAVE_ODE
+    sweeps.push_back({"ODE dWorldQuickStep, iterations", "linespoints pt 9 dt 2",
+                      options.quick ? std::vector<int>{5, 20} : std::vector<int>{10, 20, 50, 100},
+                      [](const Scene& sc, int n) { return std::make_unique<OdeSimulation>(sc, true, n); }});
+#endif
+    Table wp_table({"engine", "iterations", "ms per step", "largest drift [mm]", "outcome"});
+    Chart wp_chart("A pyramid of " + std::to_string(wp_cubes) + " cubes, 10 s: cost against drift",
+                   "time per step [ms]", "largest drift of any cube [mm]");
+    wp_chart.logX().logY();
+    double wp_slowest = 0.0;
+    for (const Sweep& sweep : sweeps) {
+      Series series{sweep.label, {}, {}, sweep.style};
+      for (const int n : sweep.counts) {
+        const Engine engine{sweep.label, sweep.label, sweep.style, 1.0, ours_budget,
+                            [&sweep, n](const Scene& sc) { return sweep.make(sc, n); }};
+        const Run r = runEngine(engine, wp_scene, steps, 2);
+        const std::string verdict = outcome(r, steps, 2.0 * kPitch * wp_rows);
+        std::cout << wp_cubes << " cubes, " << sweep.label << " " << n << ": "
+                  << (r.steps > 0 ? fmt(1e3 * r.per_step()) + " ms per step, " : "") << verdict << std::endl;
+        wp_table.add({sweep.label, std::to_string(n), r.steps > 0 ? fmt(1e3 * r.per_step()) : "-",
+                      r.steps > 0 ? fmt(1e3 * r.drift_max) : "-", verdict});
+        if (r.steps < steps) continue;  // a run cut short has no drift over the 10 s
+        series.x.push_back(1e3 * r.per_step());
+        series.y.push_back(1e3 * r.drift_max);
+        wp_slowest = std::max(wp_slowest, 1e3 * r.per_step());
+      }
+      wp_chart.add(series);
+    }
+    wp_chart.add({"stands below 5 cm", {0.1, 2.0 * wp_slowest}, {1e3 * kStands, 1e3 * kStands}, "lines dt 3 lc rgb '#000000'"});
+    const std::vector<std::string> wp_paths = wp_chart.save(options.out + "/lab06_bench_work_precision");
+    std::cout << "\nLab 6 benchmark: work against precision, " << wp_cubes << " cubes\n";
+    wp_table.print(std::cout);
+
     const std::string path = table.saveMarkdown(options.out + "/lab06_bench.md");
     const std::string phases_path = phases.saveMarkdown(options.out + "/lab06_bench_phases.md");
     {
@@ -641,11 +713,19 @@ int main(int argc, char** argv) {
       out << "\nWhere PhysLab's PGS step goes, ms per step.\n\n" << phases_file.rdbuf();
     }
     std::remove(phases_path.c_str());
+    const std::string wp_path = wp_table.saveMarkdown(options.out + "/lab06_bench_wp.md");
+    {
+      std::ifstream wp_file(wp_path);
+      std::ofstream out(path, std::ios::app);
+      out << "\nWork against precision, " << wp_cubes << " cubes (best of 2 windows).\n\n" << wp_file.rdbuf();
+    }
+    std::remove(wp_path.c_str());
 #ifdef PHYSLAB_HAVE_ODE
     dCloseODE();
 #endif
     std::cout << "wrote " << path << "\n";
     for (const std::string& p : chart_paths) std::cout << "wrote " << p << "\n";
+    for (const std::string& p : wp_paths) std::cout << "wrote " << p << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "bench_06_resting_contact: " << e.what() << "\n";

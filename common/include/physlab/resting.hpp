@@ -172,13 +172,15 @@ class LcpContactSolver : public RestingContactSolver {
  private:
   // One contact point of the matrix-free cone PGS: rows n, t, o with their Jacobians
   struct PointRows {
-    int a = 0, b = 0;
+    std::size_t a = 0, b = 0;
+    double inv_ma = 0.0, inv_mb = 0.0;
     Vec3 d[3];                 // directions n, t, o
     Vec3 ang_a[3], ang_b[3];   // r_a x d, r_b x d
     Vec3 turn_a[3], turn_b[3];  // I_a^-1 (r_a x d), I_b^-1 (r_b x d)
     double diag[3] = {};       // a_ii
     double bias[3] = {};       // velocityBias()
-    double lambda_T = 0.0;     // larger eigenvalue of the tangential 2 x 2 block
+    double inv_diag_n = 0.0;   // 1 / a_nn
+    double inv_lambda_T = 0.0;  // 1 / the larger eigenvalue of the tangential 2 x 2 block
     double mu = 0.0;
     Vec3 f = Vec3::Zero();     // (f_n, f_t, f_o)
   };

@@ -1,6 +1,7 @@
 // Lab 6 framework: the resting-contact solver World steps with. It builds the rows of the
 // resting points, asks the students' functions for the LCP of the chosen formulation, solves it
 // with the chosen method and applies the forces (or impulses) it finds.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -197,8 +198,10 @@ int LcpContactSolver::solveConeMatrixFree(std::vector<ContactBody>& bodies, std:
     PointRows& pt = points_[k];
     const ContactBody& A = bodies[static_cast<std::size_t>(c.a)];
     const ContactBody& B = bodies[static_cast<std::size_t>(c.b)];
-    pt.a = c.a;
-    pt.b = c.b;
+    pt.a = static_cast<std::size_t>(c.a);
+    pt.b = static_cast<std::size_t>(c.b);
+    pt.inv_ma = A.inv_mass;
+    pt.inv_mb = B.inv_mass;
     pt.mu = c.mu;
     // tangentDirections(n, 4)'s first two, without its vector
     Index axis = 0;
@@ -221,49 +224,53 @@ int LcpContactSolver::solveConeMatrixFree(std::vector<ContactBody>& bodies, std:
       pt.bias[i] = pt.d[i].dot(v_rel);
     }
     pt.bias[0] -= beta_h * std::max(0.0, c.depth - settings_.slop);
-
     const double a_to = (A.inv_mass + B.inv_mass) * pt.d[1].dot(pt.d[2]) + pt.ang_a[1].dot(pt.turn_a[2]) +
                         pt.ang_b[1].dot(pt.turn_b[2]);
-    pt.lambda_T = 0.5 * (pt.diag[1] + pt.diag[2]) + std::hypot(0.5 * (pt.diag[1] - pt.diag[2]), a_to);
+    pt.inv_diag_n = 1.0 / pt.diag[0];
+    pt.inv_lambda_T = 1.0 / (0.5 * (pt.diag[1] + pt.diag[2]) + std::hypot(0.5 * (pt.diag[1] - pt.diag[2]), a_to));
     pt.f = Vec3(std::max(0.0, c.j), c.j_t.dot(pt.d[1]), c.j_t.dot(pt.d[2]));
     const double radius = pt.mu * pt.f(0), length = pt.f.tail<2>().norm();
     if (length > radius) pt.f.tail<2>() *= length > 0.0 ? radius / length : 0.0;
     for (int i = 0; i < 3; ++i) {
-      dv_[static_cast<std::size_t>(pt.a)] += A.inv_mass * pt.f(i) * pt.d[i];
-      dw_[static_cast<std::size_t>(pt.a)] += pt.f(i) * pt.turn_a[i];
-      dv_[static_cast<std::size_t>(pt.b)] -= B.inv_mass * pt.f(i) * pt.d[i];
-      dw_[static_cast<std::size_t>(pt.b)] -= pt.f(i) * pt.turn_b[i];
+      dv_[pt.a] += pt.inv_ma * pt.f(i) * pt.d[i];
+      dw_[pt.a] += pt.f(i) * pt.turn_a[i];
+      dv_[pt.b] -= pt.inv_mb * pt.f(i) * pt.d[i];
+      dw_[pt.b] -= pt.f(i) * pt.turn_b[i];
     }
   }
-  // w of row i with the velocity changes so far, and an impulse change on it applied
-  auto w = [&](const PointRows& pt, int i) {
-    return pt.bias[i] + pt.d[i].dot(dv_[static_cast<std::size_t>(pt.a)] - dv_[static_cast<std::size_t>(pt.b)]) +
-           pt.ang_a[i].dot(dw_[static_cast<std::size_t>(pt.a)]) - pt.ang_b[i].dot(dw_[static_cast<std::size_t>(pt.b)]);
-  };
-  auto push = [&](const PointRows& pt, int i, double delta) {
-    dv_[static_cast<std::size_t>(pt.a)] += bodies[static_cast<std::size_t>(pt.a)].inv_mass * delta * pt.d[i];
-    dw_[static_cast<std::size_t>(pt.a)] += delta * pt.turn_a[i];
-    dv_[static_cast<std::size_t>(pt.b)] -= bodies[static_cast<std::size_t>(pt.b)].inv_mass * delta * pt.d[i];
-    dw_[static_cast<std::size_t>(pt.b)] -= delta * pt.turn_b[i];
-  };
-  // The sweeps of solveLcpPgsCone()
+  // The sweeps of solveLcpPgsCone(): w_i = b_i + J_i (dv, dw), and an impulse change moves only
+  // the point's two bodies
   int sweeps = 0;
   last_residual_ = std::numeric_limits<double>::infinity();
   while (sweeps < settings_.lcp.max_iterations) {
     double largest = 0.0;
     for (PointRows& pt : points_) {
-      const double f_n = std::max(0.0, pt.f(0) - w(pt, 0) / pt.diag[0]);
-      push(pt, 0, f_n - pt.f(0));
-      largest = std::max(largest, std::abs(f_n - pt.f(0)) * pt.diag[0]);
+      Vec3 &va = dv_[pt.a], &wa = dw_[pt.a], &vb = dv_[pt.b], &wb = dw_[pt.b];
+      // The normal row, projected onto f_n >= 0
+      const double w_n = pt.bias[0] + pt.d[0].dot(va - vb) + pt.ang_a[0].dot(wa) - pt.ang_b[0].dot(wb);
+      const double f_n = std::max(0.0, pt.f(0) - w_n * pt.inv_diag_n);
+      const double dn = f_n - pt.f(0);
+      va += (pt.inv_ma * dn) * pt.d[0];
+      wa += dn * pt.turn_a[0];
+      vb -= (pt.inv_mb * dn) * pt.d[0];
+      wb -= dn * pt.turn_b[0];
       pt.f(0) = f_n;
-      Eigen::Vector2d f_T = pt.f.tail<2>() - Eigen::Vector2d(w(pt, 1), w(pt, 2)) / pt.lambda_T;
-      const double radius = pt.mu * f_n, length = f_T.norm();
-      if (length > radius) f_T *= radius / length;
-      for (int i = 1; i < 3; ++i) {
-        push(pt, i, f_T(i - 1) - pt.f(i));
-        largest = std::max(largest, std::abs(f_T(i - 1) - pt.f(i)) * pt.diag[i]);
-        pt.f(i) = f_T(i - 1);
-      }
+      // The tangential pair, one step of 1/lambda_T, projected onto the disc of radius mu f_n
+      const Vec3 relative = va - vb;
+      const Eigen::Vector2d w_T(pt.bias[1] + pt.d[1].dot(relative) + pt.ang_a[1].dot(wa) - pt.ang_b[1].dot(wb),
+                                pt.bias[2] + pt.d[2].dot(relative) + pt.ang_a[2].dot(wa) - pt.ang_b[2].dot(wb));
+      Eigen::Vector2d f_T = pt.f.tail<2>() - w_T * pt.inv_lambda_T;
+      const double radius = pt.mu * f_n, length2 = f_T.squaredNorm();
+      if (length2 > radius * radius) f_T *= radius / std::sqrt(length2);
+      const double dt = f_T(0) - pt.f(1), d_o = f_T(1) - pt.f(2);
+      const Vec3 push = dt * pt.d[1] + d_o * pt.d[2];
+      va += pt.inv_ma * push;
+      wa += dt * pt.turn_a[1] + d_o * pt.turn_a[2];
+      vb -= pt.inv_mb * push;
+      wb -= dt * pt.turn_b[1] + d_o * pt.turn_b[2];
+      pt.f(1) = f_T(0);
+      pt.f(2) = f_T(1);
+      largest = std::max({largest, std::abs(dn) * pt.diag[0], std::abs(dt) * pt.diag[1], std::abs(d_o) * pt.diag[2]});
     }
     ++sweeps;
     last_residual_ = largest;

@@ -67,7 +67,11 @@ TEST_CASE("hidden: both time-of-impact methods agree on random pairs from a shap
           // Each reports a time when the pair is apart by at most the tolerance (GJK's 1e-7 slack).
           CHECK(at_bis.distance <= tol + 1e-7);
           CHECK(at_ca.distance <= tol + 1e-7);
-          CHECK(std::abs(bis.time - ca.time) < 1e-3);
+          // They agree, except where the pair grazes within `tol` before it touches: conservative
+          // advancement may stop at the graze (a gap within tolerance), bisection sees no overlap
+          // there and goes on to the touch. Never the other way round.
+          INFO("bisection " << bis.time << " s, advancement " << ca.time << " s");
+          CHECK((std::abs(bis.time - ca.time) < 1e-3 || ca.time < bis.time));
         } else if (ca.hit != bis.hit) {
           // Only conservative advancement can see a touch between bisection's samples.
           CHECK(ca.hit);
