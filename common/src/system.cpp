@@ -7,21 +7,31 @@
 
 namespace physlab {
 
+namespace {
+
+// The checks of every evaluation: the message (with the system's name) is built only on failure,
+// so that a step allocates nothing.
+void checkSize(const System& sys, Index actual, Index expected, const char* what) {
+  if (actual != expected) requireSize(actual, expected, sys.name() + " " + what);
+}
+
+}  // namespace
+
 void System::positionRate(const VecX& X, Eigen::Ref<VecX> qdot) const {
-  requireSize(X.size(), size(), name() + " state");
-  requireSize(qdot.size(), positionSize(), name() + " position rate");
+  checkSize(*this, X.size(), size(), "state");
+  checkSize(*this, qdot.size(), positionSize(), "position rate");
   computePositionRate(X, qdot);
 }
 
 void System::velocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
-  requireSize(X.size(), size(), name() + " state");
-  requireSize(pdot.size(), velocitySize(), name() + " velocity rate");
+  checkSize(*this, X.size(), size(), "state");
+  checkSize(*this, pdot.size(), velocitySize(), "velocity rate");
   ++force_evaluations_;
   computeVelocityRate(X, pdot);
 }
 
 void System::derivative(const VecX& X, VecX& dXdt) const {
-  requireSize(X.size(), size(), name() + " state");
+  checkSize(*this, X.size(), size(), "state");
   dXdt.resize(size());
   computePositionRate(X, dXdt.head(positionSize()));
   ++force_evaluations_;
@@ -55,8 +65,8 @@ void System::project(VecX& /*X*/) const {}
 bool System::computeJacobian(const VecX& /*X*/, MatX& /*J*/) const { return false; }
 
 void System::validateState(const VecX& X, const std::string& what) const {
-  requireSize(X.size(), size(), name() + " " + what);
-  requireFinite(X, name() + " " + what);
+  if (X.size() != size()) requireSize(X.size(), size(), name() + " " + what);
+  if (!X.allFinite()) requireFinite(X, name() + " " + what);
 }
 
 }  // namespace physlab

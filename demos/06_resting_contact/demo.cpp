@@ -1,7 +1,8 @@
 // Lab 6 demo: resting contact as an LCP. PGS's convergence against the mass ratio, the cost of
 // each solver against how well a stack stands, a pyramid over time at the acceleration and the
-// velocity level, blocks on a friction ramp against g (sin - mu cos) t, and two animations (a
-// pyramid that stands and a stack that does not).
+// velocity level, the largest pyramid the matrix-free PGS keeps standing against its sweeps,
+// blocks on a friction ramp against g (sin - mu cos) t, and animations (pyramids that stand and
+// fall, a stack that falls).
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -272,6 +273,59 @@ void pyramidChart(const DemoOptions& options, int rows, std::vector<std::string>
 }
 
 // ---------------------------------------------------------------------------------------------
+// The largest pyramid PGS keeps standing, against its sweeps (the framework's matrix-free cone
+// PGS, RestingSettings::matrix_free: solveLcpPgsCone()'s iterates at a cost linear in the rows)
+
+World matrixFreeWorld(Scene scene, int sweeps) {
+  RestingSettings resting;
+  resting.method = LcpMethod::Pgs;
+  resting.lcp.max_iterations = sweeps;
+  resting.lcp.tolerance = 0.0;
+  resting.matrix_free = true;
+  resting.slop = 0.001;  // each layer sinks about one slop: 30 layers of 2 mm would reach the bar
+  return World(std::move(scene), restingWorldSettings(), std::make_shared<LcpContactSolver>(resting));
+}
+
+void largestPyramidChart(const DemoOptions& options, std::vector<std::string>& written, Table& table) {
+  const std::vector<int> sizes = options.quick ? std::vector<int>{5, 10, 15, 20} : std::vector<int>{5, 10, 15, 20, 25, 30};
+  const double duration = options.quick ? 3.0 : 10.0, bar = 0.05;
+  Chart chart("Pyramids of " + std::to_string(sizes.front()) + " to " + std::to_string(sizes.back()) + " rows, " +
+                  fmt(duration, 2) + " s at 60 Hz: drift against size, matrix-free cone PGS",
+              "cubes", "largest drift of any cube [m] (a run stops at 1 m: fallen)");
+  chart.logX().logY();
+  const char* points[] = {"4 dt 4", "6 dt 3", "8 dt 2", "10 dt 1"};
+  const int counts[] = {10, 20, 50, 100};
+  const bool drawn = attempt("largest pyramid", [&] {
+    for (int k = 0; k < 4; ++k) {
+      Series s{"PGS " + std::to_string(counts[k]) + " sweeps", {}, {}, std::string("linespoints pt ") + points[k]};
+      int largest = 0;
+      for (const int rows : sizes) {
+        World world = matrixFreeWorld(cubePyramid(rows), counts[k]);
+        const std::vector<BodyState> start = world.states();
+        double drift = 0.0;
+        // A pyramid that has moved a metre has fallen: no need to watch the rest
+        for (long n = 0; n < std::lround(duration / kH) && drift < 1.0; ++n) {
+          world.step(kH);
+          drift = std::max(drift, largestDrift(world, start));
+        }
+        s.x.push_back(rows * (rows + 1) / 2);
+        s.y.push_back(drift);
+        if (drift <= bar) largest = std::max(largest, rows);
+      }
+      table.add({"largest pyramid standing " + fmt(duration, 2) + " s (drift <= 5 cm), PGS " + std::to_string(counts[k]) +
+                     " sweeps [rows]",
+                 largest > 0 ? std::to_string(largest) : "none of those tried", "grows with the sweeps"});
+      chart.add(std::move(s));
+    }
+  });
+  if (!drawn) return;
+  const double most = sizes.back() * (sizes.back() + 1) / 2.0;
+  chart.add({"stands below 5 cm", {0.8 * sizes.front() * (sizes.front() + 1) / 2.0, 1.2 * most}, {bar, bar},
+             "lines dt 3 lc rgb 'gray30'"});
+  for (const auto& p : chart.save(options.out + "/lab06_largest_pyramid")) written.push_back(p);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Friction ramp
 
 void frictionRampChart(const DemoOptions& options, std::vector<std::string>& written, Table& table) {
@@ -396,6 +450,23 @@ void pyramidAnimation(const DemoOptions& options, int rows, std::vector<std::str
   });
 }
 
+// A large pyramid with the matrix-free PGS: 100 sweeps keep it standing, 20 let it fall.
+void largePyramidAnimations(const DemoOptions& options, std::vector<std::string>& written) {
+  // 20 rows in both modes: at 20 sweeps this pyramid falls within 6 s, at 100 it stands
+  const int rows = 20;
+  const double width = rows * (2.0 * kHalf + 0.02);
+  for (const int sweeps : {100, 20}) {
+    attempt("large pyramid animation, " + std::to_string(sweeps) + " sweeps", [&] {
+      written.push_back(film(matrixFreeWorld(cubePyramid(rows), sweeps),
+                             std::to_string(rows * (rows + 1) / 2) + " cubes, matrix-free PGS at " +
+                                 std::to_string(sweeps) + " sweeps per step",
+                             Vec3(-0.7 * width, -0.7 * width, 0.0), Vec3(0.7 * width, 0.7 * width, 1.1 * width),
+                             options.quick ? 30 : 60, options.quick ? 6.0 : 10.0,
+                             options.out + "/lab06_pyramid_" + std::to_string(sweeps) + "_sweeps.gif"));
+    });
+  }
+}
+
 void collapseAnimation(const DemoOptions& options, std::vector<std::string>& written) {
   if (!lcpReady("collapse animation")) return;
   attempt("collapse animation", [&] {
@@ -415,7 +486,8 @@ int main(int argc, char** argv) {
     const DemoOptions options = parseDemoOptions(
         argc, argv,
         "Lab 6 demo: PGS convergence against the mass ratio, solver cost against stack drift, a pyramid at "
-        "both levels, a friction ramp, a standing pyramid and a collapsing stack.");
+        "both levels, the largest pyramid PGS keeps standing, a friction ramp, standing and falling pyramids and a "
+        "collapsing stack.");
     std::vector<std::string> written;
     Table table({"quantity", "measured", "expected"});
     // A pyramid's LCP is dense and the exact solvers' cost grows fast with its size: with 4 rows
@@ -424,9 +496,11 @@ int main(int argc, char** argv) {
     convergenceChart(options, written, table);
     workPrecisionChart(options, written, table);
     pyramidChart(options, rows, written, table);
+    largestPyramidChart(options, written, table);
     frictionRampChart(options, written, table);
     pyramidAnimation(options, rows, written);
     collapseAnimation(options, written);
+    largePyramidAnimations(options, written);
     reportDemo("Lab 6", written, table, options.out + "/lab06_summary.md");
     return 0;
   } catch (const std::exception& e) {

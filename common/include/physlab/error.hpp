@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "physlab/math.hpp"
 
@@ -43,29 +44,29 @@ class NumericalFailure : public std::runtime_error {
 };
 
 /// Throw InvalidInput naming `what` unless `value` is finite and strictly positive.
-inline void requirePositive(double value, const std::string& what) {
+inline void requirePositive(double value, std::string_view what) {
   if (!(std::isfinite(value) && value > 0.0)) {
-    throw InvalidInput(what + " must be positive and finite, got " + std::to_string(value));
+    throw InvalidInput(std::string(what) + " must be positive and finite, got " + std::to_string(value));
   }
 }
 
 /// Throw InvalidInput naming `what` unless `value` is finite and not negative.
-inline void requireNonNegative(double value, const std::string& what) {
+inline void requireNonNegative(double value, std::string_view what) {
   if (!(std::isfinite(value) && value >= 0.0)) {
-    throw InvalidInput(what + " must be non-negative and finite, got " + std::to_string(value));
+    throw InvalidInput(std::string(what) + " must be non-negative and finite, got " + std::to_string(value));
   }
 }
 
 /// Throw InvalidInput naming `what` and the first bad entry unless every entry is finite.
 template <class Derived>
-void requireFinite(const Eigen::DenseBase<Derived>& values, const std::string& what) {
+void requireFinite(const Eigen::DenseBase<Derived>& values, std::string_view what) {
   // A sum is finite exactly when no entry is NaN or infinite (barring overflow, which the loop
   // below then clears): one vectorised pass in the common case, the search only on failure.
   if (std::isfinite(values.sum())) return;
   for (Index j = 0; j < values.cols(); ++j) {
     for (Index i = 0; i < values.rows(); ++i) {
       if (!std::isfinite(values(i, j))) {
-        throw InvalidInput(what + " has a non-finite entry at (" + std::to_string(i) + ", " +
+        throw InvalidInput(std::string(what) + " has a non-finite entry at (" + std::to_string(i) + ", " +
                            std::to_string(j) + ")");
       }
     }
@@ -73,9 +74,9 @@ void requireFinite(const Eigen::DenseBase<Derived>& values, const std::string& w
 }
 
 /// Throw InvalidInput unless `actual == expected`, naming both sizes.
-inline void requireSize(Index actual, Index expected, const std::string& what) {
+inline void requireSize(Index actual, Index expected, std::string_view what) {
   if (actual != expected) {
-    throw InvalidInput(what + " has size " + std::to_string(actual) + ", expected " +
+    throw InvalidInput(std::string(what) + " has size " + std::to_string(actual) + ", expected " +
                        std::to_string(expected));
   }
 }
