@@ -5,6 +5,8 @@
 namespace physlab {
 
 Vec3 angularVelocity(const RigidBody& body, const Quat& q, const Vec3& L) {
+  // Refuse a quaternion that stands for no rotation
+  // TODO(student): InvalidInput when q is zero or not finite, or L is not finite.
   // Rotate the body-frame inverse inertia into the world: I^-1 = R I_body^-1 R^T
   // TODO(student): R = q.normalized().toRotationMatrix(); body.inertia_body_inv is I_body^-1.
   // Apply it to the angular momentum

@@ -8,6 +8,8 @@
 namespace physlab {
 
 Quat exponentialUpdate(const Quat& q, const Vec3& omega, double h) {
+  // Refuse a quaternion that stands for no rotation, and non-finite input
+  // TODO(student): InvalidInput when q is zero or not finite, or omega or h is not finite.
   // Find the angle |omega| h turned in the step
   // TODO(student): return q unchanged when it is zero.
   // Rotate by it about omega's direction: exp(h omega / 2) q

@@ -5,6 +5,10 @@
 namespace physlab {
 
 Vec3 angularVelocity(const RigidBody& body, const Quat& q, const Vec3& L) {
+  // Refuse a quaternion that stands for no rotation
+  requireFinite(q.coeffs(), "angularVelocity quaternion q");
+  if (!(q.squaredNorm() > 0.0)) throw InvalidInput("angularVelocity quaternion q is zero: it stands for no rotation");
+  requireFinite(L, "angularVelocity angular momentum L");
   // Rotate the body-frame inverse inertia into the world: I^-1 = R I_body^-1 R^T
   const Mat3 R = q.normalized().toRotationMatrix();
   // Apply it to the angular momentum

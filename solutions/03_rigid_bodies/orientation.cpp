@@ -8,6 +8,11 @@
 namespace physlab {
 
 Quat exponentialUpdate(const Quat& q, const Vec3& omega, double h) {
+  // Refuse a quaternion that stands for no rotation, and non-finite input
+  requireFinite(q.coeffs(), "exponentialUpdate quaternion q");
+  if (!(q.squaredNorm() > 0.0)) throw InvalidInput("exponentialUpdate quaternion q is zero: it stands for no rotation");
+  requireFinite(omega, "exponentialUpdate angular velocity omega");
+  if (!std::isfinite(h)) throw InvalidInput("exponentialUpdate step h must be finite, got " + std::to_string(h));
   // Find the angle |omega| h turned in the step
   const double angle = omega.norm() * h;
   if (angle == 0.0) return q;

@@ -1,5 +1,10 @@
 // Lab 3 graded tests of each function's whole contract: unequal point masses, quaternions that
-// are not unit length, and Euler's equations with a torque and a non-diagonal inertia tensor.
+// are not unit length, Euler's equations with a torque and a non-diagonal inertia tensor, and
+// bad input refused by name.
+#include <cmath>
+#include <limits>
+
+#include "physlab/error.hpp"
 #include "physlab/rigid.hpp"
 #include "support.hpp"
 
@@ -60,4 +65,43 @@ TEST_CASE("rigid: Euler's equations balance torque and the gyroscopic term for a
   CHECK((I * rate + gyroscopic - torque).norm() < 1e-12 * (torque.norm() + gyroscopic.norm()));
   // A body at rest only feels the torque: omega_dot = I^-1 tau.
   CHECK((I * bodyFrameOmegaRate(I, Vec3::Zero(), torque) - torque).norm() < 1e-12 * torque.norm());
+}
+
+TEST_CASE("bad input: no inertia for a non-positive mass or size, no rotation for a zero quaternion", "[lab03][pts=1]") {
+  using Catch::Matchers::Contains;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double M = uniform(0.5, 2.0), r = uniform(0.1, 1.0);
+  // Valid input of any size is accepted (a tiny body has a tiny inertia, not an error)
+  CHECK(sphereInertia(1e-6, 1e-3)(0, 0) > 0.0);
+  for (const double bad : {0.0, -M, nan}) {
+    CAPTURE(bad);
+    CHECK_THROWS_AS(sphereInertia(bad, r), InvalidInput);
+    CHECK_THROWS_AS(sphereInertia(M, bad), InvalidInput);
+    CHECK_THROWS_AS(boxInertia(bad, Vec3(r, r, r)), InvalidInput);
+    CHECK_THROWS_AS(boxInertia(M, Vec3(r, bad, r)), InvalidInput);
+    CHECK_THROWS_AS(cylinderInertia(bad, r, r), InvalidInput);
+    CHECK_THROWS_AS(cylinderInertia(M, bad, r), InvalidInput);
+    CHECK_THROWS_AS(cylinderInertia(M, r, bad), InvalidInput);
+    CHECK_THROWS_AS(pointMassInertia(Vec3(M, bad, M), Mat3::Identity()), InvalidInput);
+  }
+  CHECK_THROWS_AS(pointMassInertia(VecX::Ones(2), Mat3X::Zero(3, 3)), InvalidInput);  // 2 masses, 3 points
+  CHECK_THROWS_AS(pointMassInertia(VecX(0), Mat3X(3, 0)), InvalidInput);              // nothing at all
+  Mat3 positions = Mat3::Identity();
+  positions(1, 2) = nan;
+  CHECK_THROWS_AS(pointMassInertia(Vec3::Ones(), positions), InvalidInput);
+  // A zero quaternion stands for no rotation: no angular velocity, no update
+  const RigidBody body(M, sphereInertia(M, r));
+  const Vec3 L = randomVec3(1.0), omega = randomVec3(1.0);
+  CHECK_THROWS_WITH(angularVelocity(body, Quat(0, 0, 0, 0), L), Contains("zero"));
+  CHECK_THROWS_AS(angularVelocity(body, Quat(nan, 0, 0, 0), L), InvalidInput);
+  CHECK_THROWS_AS(angularVelocity(body, Quat(1, 0, 0, 0), Vec3(0, nan, 0)), InvalidInput);
+  CHECK_THROWS_WITH(exponentialUpdate(Quat(0, 0, 0, 0), omega, 0.01), Contains("zero"));
+  CHECK_THROWS_AS(exponentialUpdate(Quat(1, 0, 0, 0), Vec3(nan, 0, 0), 0.01), InvalidInput);
+  CHECK_THROWS_AS(exponentialUpdate(Quat(1, 0, 0, 0), omega, nan), InvalidInput);
+  // A state whose quaternion was zeroed does not step on
+  const RigidBodySystem sys(body);
+  VecX X = sys.makeState(Vec3::Zero(), Quat(randomRotation()), Vec3::Zero(), L);
+  X.segment<4>(3).setZero();
+  VecX dXdt;
+  CHECK_THROWS_AS(sys.derivative(X, dXdt), InvalidInput);
 }

@@ -33,6 +33,12 @@ TEST_CASE("validation: a state of the wrong size or with a NaN is refused", "[co
   VecX nan = VecX::Ones(2);
   nan[1] = std::nan("");
   CHECK_THROWS_WITH(integrator.step(osc, nan, 0.1), Contains("non-finite entry"));
+  // A finite state that a step makes non-finite: the method diverged, not the input
+  Integrator euler(Method::ExplicitEuler);
+  VecX huge = VecX::Constant(2, 1e300);
+  CHECK_THROWS_WITH(euler.step(HarmonicOscillator(1e10), huge, 1.0), Contains("diverged"));
+  huge = VecX::Constant(2, 1e300);
+  CHECK_THROWS_AS(euler.step(HarmonicOscillator(1e10), huge, 1.0), NumericalFailure);
   const ParticleSystem sys(VecX::Ones(2));
   CHECK_THROWS_WITH(sys.makeState(Mat3X::Zero(3, 3), Mat3X::Zero(3, 2)),
                     Contains("positions (columns) has size 3, expected 2"));

@@ -54,21 +54,24 @@ struct AppliedForce {
 
 /// Inertia of a solid box of mass `M` and edge lengths `size` = (a, b, c) about its centre, body
 /// axes along the edges: \f$\frac{M}{12}\mathrm{diag}(b^2 + c^2,\ a^2 + c^2,\ a^2 + b^2)\f$.
-/// Handout: Lab 3, section 1.
+/// InvalidInput unless M and every edge are positive and finite. Handout: Lab 3, section 1.
 Mat3 boxInertia(double M, const Vec3& size);
-/// Inertia of a solid sphere: \f$\frac25 M r^2\,\mathbb 1\f$. Handout: Lab 3, section 1.
+/// Inertia of a solid sphere: \f$\frac25 M r^2\,\mathbb 1\f$. InvalidInput unless M and r are
+/// positive and finite. Handout: Lab 3, section 1.
 Mat3 sphereInertia(double M, double radius);
 /// Inertia of a solid cylinder with its axis along z:
 /// \f$\mathrm{diag}(\frac{M}{12}(3r^2 + h^2),\ \frac{M}{12}(3r^2 + h^2),\ \frac12 M r^2)\f$.
-/// Handout: Lab 3, section 1.
+/// InvalidInput unless M, r and h are positive and finite. Handout: Lab 3, section 1.
 Mat3 cylinderInertia(double M, double radius, double height);
 /// Inertia of point masses `m` (n) at `r` (3 x n) about their centre of mass:
 /// \f$\sum_i m_i\big((r_{0i}^T r_{0i})\mathbb 1 - r_{0i} r_{0i}^T\big)\f$, \f$r_{0i} = r_i - c\f$.
-/// Handout: Lab 3, section 1.
+/// InvalidInput when r has not m.size() columns, m is empty, a mass is not positive and finite or
+/// a position not finite. Handout: Lab 3, section 1.
 Mat3 pointMassInertia(const VecX& m, const Mat3X& r);
 /// World angular velocity \f$\omega = R\, I_{body}^{-1} R^T L\f$ [rad/s], with R the rotation of
 /// \f$q / |q|\f$: q need not have unit length (an integrated state's quaternion drifts off it
-/// between renormalisations). Handout: Lab 3, section 2.
+/// between renormalisations). InvalidInput when q is zero or not finite (no rotation), or L not
+/// finite. Handout: Lab 3, section 2.
 Vec3 angularVelocity(const RigidBody& body, const Quat& q, const Vec3& L);
 /// Total force and torque about the world point `x` (the centre of mass) of forces at world
 /// points: \f$F = \sum_i F_i\f$, \f$\tau = \sum_i (p_i - x) \times F_i\f$, world frame.
@@ -79,7 +82,7 @@ Wrench wrenchAbout(const Vec3& x, const std::vector<AppliedForce>& forces);
 Vec3 pointVelocity(const Vec3& v, const Vec3& omega, const Vec3& x, const Vec3& p);
 /// The exact update for constant \f$\omega\f$ over a step: \f$q_{n+1} = \exp(\tfrac h2 \omega)\, q_n\f$,
 /// i.e. a rotation by \f$|\omega| h\f$ about \f$\omega/|\omega|\f$ (q unchanged when \f$\omega = 0\f$).
-/// Handout: Lab 3, section 5.
+/// InvalidInput when q is zero or not finite, or omega or h not finite. Handout: Lab 3, section 5.
 Quat exponentialUpdate(const Quat& q, const Vec3& omega, double h);
 /// Gram-Schmidt re-orthonormalisation of the columns of `R` (first column normalised, second made
 /// orthogonal to it and normalised, third the cross product). Handout: Lab 3, section 6.

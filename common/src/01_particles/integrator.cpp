@@ -23,6 +23,12 @@ void Integrator::step(const System& sys, VecX& X, double h) {
     case Method::ImplicitEuler: implicitEuler(sys, h, X, ws_, newton_); break;
   }
   sys.project(X);
+  // Finite input that came out non-finite: the method diverged (explicit Euler past its
+  // stability limit, say), which is not the caller's bad input
+  if (!X.allFinite()) {
+    throw NumericalFailure(methodName(method_) + " diverged: the state became non-finite with h = " +
+                           std::to_string(h) + " (a smaller step or a stable method may help)");
+  }
 }
 
 }  // namespace physlab
