@@ -12,6 +12,7 @@ The design and its limits are on the Grading page (docs/grading.md).
 import argparse
 import concurrent.futures
 import ctypes
+import functools
 import hashlib
 import hmac
 import json
@@ -459,6 +460,37 @@ SYMBOL = {"passed": "PASS", "failed": "FAIL", "not implemented": "TODO", "timed 
           "crashed": "CRSH", "not compiled": "COMP", "not run": "----"}
 
 
+# Words too common to tie a test's group to a handout section
+COMMON_WORDS = {"the", "a", "an", "of", "and", "on", "in", "with", "to", "its", "at", "by", "for"}
+
+
+@functools.lru_cache(maxsize=None)
+def handout_sections(stage: str) -> tuple:
+    """The lab's handout (path relative to the tree) and its numbered sections (number, title)."""
+    found = sorted((ROOT / "docs").glob(f"lab{stage[:2]}_*.md"))
+    if not found:
+        return None, ()
+    text = found[0].read_text(encoding="utf-8", errors="replace")
+    sections = tuple(re.findall(r"^## (\d+)\. (.+?)(?: \{#\w+\})?$", text, re.MULTILINE))
+    return found[0].relative_to(ROOT), sections
+
+
+def handout_hint(stage: str, name: str) -> str:
+    """Where the handout explains what a failed test checks: the numbered section whose title
+    shares most words with the test's group (the name before its first colon), else its Tests
+    section."""
+    path, sections = handout_sections(stage)
+    if path is None:
+        return ""
+    group = name.split(":", 1)[0].lower() if ":" in name else ""
+    words = set(re.findall(r"[a-z]+", group)) - COMMON_WORDS
+    best = max(((len(words & (set(re.findall(r"[a-z]+", title.lower())) - COMMON_WORDS)), number, title)
+                for number, title in sections), default=(0, "", ""))
+    if best[0] > 0:
+        return f"handout: {path}, section {best[1]} ({best[2]})"
+    return f"handout: {path}, section Tests (what each group checks)"
+
+
 def report(results: list, seed: int, title: str) -> str:
     out = [title, f"random seed: {seed} (rerun one test: build/test_NN_name_labs \"<test name>\" "
                   f"--rng-seed {seed})", ""]
@@ -480,6 +512,9 @@ def report(results: list, seed: int, title: str) -> str:
             out.append(f" {SYMBOL[t.status]} {pts:>6}  {t.name}{extra}")
             if not t.passed and t.status != "not compiled":
                 out += ["            " + l for l in t.output.splitlines()[:12]]
+                # A stub's message names its section already; a wrong answer gets the pointer here
+                if t.status != "not implemented" and not t.hidden:
+                    out.append("            " + handout_hint(r.stage, t.name))
         out.append("")
     out.append(f"TOTAL: {earned:g} / {total:g} points")
     return clean("\n".join(out))
