@@ -67,6 +67,63 @@ double oursPerBodyStep(Method method, int count, int sweeps) {
   return seconds / (static_cast<double>(sweeps) * count);
 }
 
+// The anchor: the same RK4 of the same free body with a fixed-size 13-number state and the
+// derivative written out (no System, no checks, no heap): what a step costs with nothing but its
+// arithmetic. Same formulas as the reference (omega = R I^-1 R^T L with R of q/|q|, qdot =
+// 1/2 (0, omega) q, P and L constant, q renormalised after the step).
+using State13 = Eigen::Matrix<double, 13, 1>;
+
+State13 anchorDerivative(const State13& X, double mass, const Mat3& I_inv) {
+  const Quat q(X[3], X[4], X[5], X[6]);
+  const Mat3 R = q.normalized().toRotationMatrix();
+  const Vec3 omega = R * (I_inv * (R.transpose() * X.segment<3>(10)));
+  const Quat product = Quat(0.0, omega.x(), omega.y(), omega.z()) * q;
+  State13 d;
+  d.head<3>() = X.segment<3>(7) / mass;
+  d.segment<4>(3) << 0.5 * product.w(), 0.5 * product.x(), 0.5 * product.y(), 0.5 * product.z();
+  d.tail<6>().setZero();
+  return d;
+}
+
+void anchorStep(State13& X, double h, double mass, const Mat3& I_inv) {
+  const State13 k1 = anchorDerivative(X, mass, I_inv);
+  const State13 k2 = anchorDerivative(X + (0.5 * h) * k1, mass, I_inv);
+  const State13 k3 = anchorDerivative(X + (0.5 * h) * k2, mass, I_inv);
+  const State13 k4 = anchorDerivative(X + h * k3, mass, I_inv);
+  X += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  X.segment<4>(3).normalize();
+}
+
+// Seconds per body-step of the anchor on the bodies oursPerBodyStep() draws, and the largest
+// difference of its states from ours after the same steps (the same work: round-off at most).
+double anchorPerBodyStep(int count, int sweeps, double& difference) {
+  const RigidBodySystem sys(RigidBody(1.0, kInertia));
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal;
+  std::vector<State13> states;
+  std::vector<VecX> ours;
+  for (int i = 0; i < count; ++i) {
+    ours.push_back(sys.makeState(Vec3(normal(rng), normal(rng), normal(rng)),
+                                 Quat(normal(rng), normal(rng), normal(rng), normal(rng)), Vec3::Zero(),
+                                 Vec3(normal(rng), normal(rng), normal(rng))));
+    states.push_back(ours.back());
+  }
+  const Mat3 I_inv = kInertia.inverse();
+  const double seconds = fastest(kRounds, [&] {
+    for (int s = 0; s < sweeps; ++s) {
+      for (State13& X : states) anchorStep(X, kStep, 1.0, I_inv);
+    }
+  });
+  // The same steps with ours, from the same start: kRounds x sweeps of them
+  Integrator integrator(Method::RK4);
+  difference = 0.0;
+  for (int i = 0; i < count; ++i) {
+    for (int n = 0; n < kRounds * sweeps; ++n) integrator.step(sys, ours[static_cast<std::size_t>(i)], kStep);
+    difference = std::max(difference, (ours[static_cast<std::size_t>(i)] - states[static_cast<std::size_t>(i)]).cwiseAbs().maxCoeff());
+  }
+  return seconds / (static_cast<double>(sweeps) * count);
+}
+
 double oursDrift(Method method) {
   const RigidBodySystem sys(RigidBody(1.0, kInertia));
   VecX X = sys.makeState(Vec3::Zero(), Quat::Identity(), Vec3::Zero(), kInertia * kOmega0);
@@ -129,6 +186,7 @@ double bulletPerBodyStep(int count, int sweeps) {
     w.add(btVector3(i % side, (i / side) % side, i / (side * side)) * 10.0,
           btVector3(normal(rng), normal(rng), normal(rng)), BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
   }
+  w.world.stepSimulation(kStep, 0);  // warm-up: Bullet's first step sets up its islands, 3-4x slower
   const double seconds = fastest(kRounds, [&] {
     for (int s = 0; s < sweeps; ++s) w.world.stepSimulation(kStep, 0);
   });
@@ -213,6 +271,12 @@ int main(int argc, char** argv) {
     table.add({"PhysLab", "explicit Euler, quaternion", "-", fmt(oursDrift(Method::ExplicitEuler))});
     std::cout << "PhysLab RK4: " << fmt(1e9 * ours_rk4_cost) << " ns per body-step, energy drift "
               << fmt(ours_rk4_drift) << " after 20 s\n";
+    double anchor_difference = 0.0;
+    const double anchor_cost = anchorPerBodyStep(count, sweeps, anchor_difference);
+    table.add({"anchor", "RK4, fixed-size 13-number state", fmt(1.0 / anchor_cost), "-"});
+    // The goal: the framework's RK4 within 1.2x of the fixed-size one, same states
+    std::cout << "cost per body-step, PhysLab RK4 / fixed-size anchor: " << fmt(ours_rk4_cost / anchor_cost)
+              << " (largest state difference " << fmt(anchor_difference) << ")\n";
 #ifdef PHYSLAB_HAVE_BULLET
     const std::string bullet = "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100);
     const double bullet_cost = bulletPerBodyStep(count, sweeps);

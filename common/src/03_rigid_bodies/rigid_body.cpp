@@ -59,11 +59,14 @@ VecX RigidBodySystem::makeState(const Vec3& x, const Quat& q, const Vec3& P, con
 
 std::vector<AppliedForce> RigidBodySystem::appliedForces(const VecX& X) const {
   const Vec3 x = X.head<3>();
-  const Mat3 R = orientationOf(X).normalized().toRotationMatrix();
   std::vector<AppliedForce> applied;
   // Exact count: a free body (no forces, no gravity) then allocates nothing in its derivative.
   applied.reserve(forces_.size() + (gravity_.isZero() ? 0 : 1));
-  for (const BodyForce& f : forces_) applied.push_back({x + R * f.point_body, f.force_world});
+  if (!forces_.empty()) {
+    // R only when a body-fixed force needs it: angularVelocity() builds it too
+    const Mat3 R = orientationOf(X).normalized().toRotationMatrix();
+    for (const BodyForce& f : forces_) applied.push_back({x + R * f.point_body, f.force_world});
+  }
   if (!gravity_.isZero()) applied.push_back({x, body_.mass * gravity_});
   return applied;
 }
