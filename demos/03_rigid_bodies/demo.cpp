@@ -47,6 +47,7 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
   energy.logY();
   constraint.logY();
   momentum.logY();
+  std::vector<Series> drift;  // the momentum chart's curves, drawn after the merges below
   for (Method method : {Method::ExplicitEuler, Method::SymplecticEuler, Method::RK4}) {
     const std::string m = methodName(method);
     attempt(m + " (quaternion)", [&] {
@@ -72,7 +73,7 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
         if (renormalize) {
           table.add({m, "quaternion, renormalised", fmt(e.y.back()), fmt(l.y.back())});
           energy.add(e);
-          momentum.add(l);
+          drift.push_back(l);
         } else {
           constraint.add(c);
         }
@@ -100,13 +101,37 @@ void driftCharts(const DemoOptions& options, std::vector<std::string>& written, 
         }
         table.add({m, form, fmt(e.y.back()), fmt(l.y.back())});
         energy.add(e);
-        momentum.add(l);
+        drift.push_back(l);
         if (!gs) constraint.add(c);
       });
     }
   }
   for (const auto& p : energy.save(options.out + "/lab03_energy_drift")) written.push_back(p);
   for (const auto& p : constraint.save(options.out + "/lab03_constraint_drift")) written.push_back(p);
+  // Readable without the text: curves at round-off become one band (their largest value at each
+  // time), and symplectic Euler, the same as explicit Euler without torque, is named, not drawn
+  Series band{"round-off (quaternion, Gram-Schmidt)", {}, {}, "lines lw 1 lc rgb 'gray40'"};
+  int merged = 0;
+  for (const Series& l : drift) {
+    const bool roundoff = !l.y.empty() && *std::max_element(l.y.begin(), l.y.end()) < 1e-13;
+    const bool twin = l.title.rfind(methodName(Method::SymplecticEuler), 0) == 0 &&
+                      std::any_of(drift.begin(), drift.end(), [&](const Series& o) {
+                        return o.title == methodName(Method::ExplicitEuler) + l.title.substr(methodName(Method::SymplecticEuler).size()) &&
+                               o.y == l.y;
+                      });
+    if (roundoff) {
+      if (band.x.empty()) band.x = l.x, band.y.assign(l.y.size(), 0.0);
+      for (std::size_t i = 0; i < std::min(band.y.size(), l.y.size()); ++i) {
+        band.y[i] = std::max(band.y[i], std::max(l.y[i], 1e-17));  // an exact 0 would leave the log axis
+      }
+      ++merged;
+    } else if (!twin) {
+      Series kept = l;
+      if (l.title.rfind(methodName(Method::ExplicitEuler), 0) == 0) kept.title += " (= symplectic)";
+      momentum.add(kept);
+    }
+  }
+  if (merged > 0) momentum.add(band);
   for (const auto& p : momentum.save(options.out + "/lab03_momentum_drift")) written.push_back(p);
 }
 
