@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -102,6 +103,12 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     }
     data.push_back(std::move(kept));
   }
+  // The data's x extent, markers included: where a marker's label has room
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
+  for (const auto& d : data) {
+    for (const auto& [x, y] : d) x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
+  }
+  for (const Marker& m : markers_) x_lo = std::min(x_lo, m.x), x_hi = std::max(x_hi, m.x);
   std::vector<std::string> paths;
   const std::vector<std::pair<std::string, std::string>> terminals = {
       {".png", "pngcairo size 960,600 enhanced font 'Sans,11'"},
@@ -118,12 +125,16 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     if (log_y_) gp << "set logscale y\nset format y '10^{%L}'\n";
     if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
     for (std::size_t i = 0; i < markers_.size(); ++i) {
-      // Stagger the labels downwards so that neighbouring markers do not overwrite each other.
+      // Labels near the top, staggered downwards so that neighbouring markers do not overwrite
+      // each other; a marker in the right part of the data is labelled to its left, so that the
+      // text stays inside the plot and off the key outside on the right.
       const Marker& m = markers_[i];
+      const auto position = [&](double x) { return log_x_ ? std::log(std::max(x, 1e-300)) : x; };
+      const bool leftwards = x_hi > x_lo && (position(m.x) - position(x_lo)) > 0.6 * (position(x_hi) - position(x_lo));
       gp << "set arrow from " << m.x << ", graph 0 to " << m.x
          << ", graph 1 nohead dashtype 2 lw 1.5 lc rgb '#555555'\n"
          << "set label " << quoted(m.label) << " at " << m.x << ", graph " << 0.96 - 0.05 * i
-         << " left offset 0.5,0 font ',9'\n";
+         << (leftwards ? " right offset -0.5,0" : " left offset 0.5,0") << " font ',9' front\n";
     }
     std::ostringstream plot;
     plot << "plot ";
