@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include "physlab/error.hpp"
 #include "physlab/resting.hpp"
@@ -38,15 +40,24 @@ std::string RestingSettings::toString() const {
   return out.str();
 }
 
+namespace {
+
+// An orthonormal pair spanning the plane normal to the unit n, the first chosen from n alone:
+// n crossed with the world axis it is least aligned with, so the tangent is never short.
+std::pair<Vec3, Vec3> tangentPair(const Vec3& n) {
+  Index axis = 0;
+  n.cwiseAbs().minCoeff(&axis);
+  const Vec3 t1 = n.cross(Vec3::Unit(axis)).normalized();
+  return {t1, n.cross(t1)};
+}
+
+}  // namespace
+
 std::vector<Vec3> tangentDirections(const Vec3& n, int k) {
   if (k < 1) throw InvalidInput("tangentDirections needs k >= 1, got " + std::to_string(k));
   requireFinite(n, "tangentDirections normal n");
   if (std::abs(n.norm() - 1.0) > 1e-9) throw InvalidInput("tangentDirections normal n must be a unit vector");
-  // Cross n with the world axis it is least aligned with, so the tangent is never short
-  Index axis = 0;
-  n.cwiseAbs().minCoeff(&axis);
-  const Vec3 t1 = n.cross(Vec3::Unit(axis)).normalized();
-  const Vec3 t2 = n.cross(t1);
+  const auto [t1, t2] = tangentPair(n);
   std::vector<Vec3> directions(static_cast<std::size_t>(k));
   for (int l = 0; l < k; ++l) {
     const double angle = 2.0 * M_PI * l / k;
@@ -97,10 +108,10 @@ int LcpContactSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contac
   for (const int index : resting) {
     const Contact& c = contacts[index];
     if (cone) {
-      const std::vector<Vec3> t = tangentDirections(c.n, 4);
+      const auto [t1, t2] = tangentPair(c.n);
       addRow(c, c.n, c.depth);
-      addRow(c, t[0], 0.0);
-      addRow(c, t[1], 0.0);
+      addRow(c, t1, 0.0);
+      addRow(c, t2, 0.0);
     } else {
       addRow(c, c.n, c.depth);
     }
@@ -203,12 +214,9 @@ int LcpContactSolver::solveConeMatrixFree(std::vector<ContactBody>& bodies, std:
     pt.inv_ma = A.inv_mass;
     pt.inv_mb = B.inv_mass;
     pt.mu = c.mu;
-    // tangentDirections(n, 4)'s first two, without its vector
-    Index axis = 0;
-    c.n.cwiseAbs().minCoeff(&axis);
+    // The rows n, t, o of the dense cone path
     pt.d[0] = c.n;
-    pt.d[1] = c.n.cross(Vec3::Unit(axis)).normalized();
-    pt.d[2] = c.n.cross(pt.d[1]);
+    std::tie(pt.d[1], pt.d[2]) = tangentPair(c.n);
     const Vec3 r_a = c.p - A.x, r_b = c.p - B.x;
     const Vec3 v_rel = A.v + A.omega.cross(r_a) - B.v - B.omega.cross(r_b);
     for (int i = 0; i < 3; ++i) {
