@@ -31,11 +31,12 @@ void System::velocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
 }
 
 void System::derivative(const VecX& X, VecX& dXdt) const {
-  checkSize(*this, X.size(), size(), "state");
-  dXdt.resize(size());
-  computePositionRate(X, dXdt.head(positionSize()));
+  const Index nq = positionSize(), nv = velocitySize();  // virtual: asked once per evaluation
+  checkSize(*this, X.size(), nq + nv, "state");
+  dXdt.resize(nq + nv);
+  computePositionRate(X, dXdt.head(nq));
   ++force_evaluations_;
-  computeVelocityRate(X, dXdt.tail(velocitySize()));
+  computeVelocityRate(X, dXdt.tail(nv));
 }
 
 MatX System::jacobian(const VecX& X) const {
@@ -64,9 +65,9 @@ void System::project(VecX& /*X*/) const {}
 
 bool System::computeJacobian(const VecX& /*X*/, MatX& /*J*/) const { return false; }
 
-void System::validateState(const VecX& X, const std::string& what) const {
-  if (X.size() != size()) requireSize(X.size(), size(), name() + " " + what);
-  if (!X.allFinite()) requireFinite(X, name() + " " + what);
+void System::validateState(const VecX& X, std::string_view what) const {
+  if (X.size() != size()) requireSize(X.size(), size(), name() + " " + std::string(what));
+  if (!X.allFinite()) requireFinite(X, name() + " " + std::string(what));
 }
 
 }  // namespace physlab

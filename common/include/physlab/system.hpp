@@ -13,6 +13,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "physlab/math.hpp"
 
@@ -50,7 +51,7 @@ class System {
   virtual void project(VecX& X) const;
 
   /// Throws InvalidInput unless `X` has length size() and finite entries.
-  void validateState(const VecX& X, const std::string& what = "state") const;
+  void validateState(const VecX& X, std::string_view what = "state") const;
 
   /// Number of force evaluations (calls of velocityRate or derivative) since construction or
   /// the last resetCount(); the cost axis of the work-precision charts.

@@ -12,7 +12,8 @@ Integrator::Integrator(Method method, NewtonSettings newton) : method_(method), 
 void Integrator::step(const System& sys, VecX& X, double h) {
   requirePositive(h, "step size h");
   sys.validateState(X);
-  for (VecX* v : {&ws_.k1, &ws_.k2, &ws_.k3, &ws_.k4, &ws_.X_tmp}) v->resize(sys.size());
+  const Index n = sys.size();
+  for (VecX* v : {&ws_.k1, &ws_.k2, &ws_.k3, &ws_.k4, &ws_.X_tmp}) v->resize(n);
   switch (method_) {
     case Method::ExplicitEuler: explicitEuler(sys, h, X, ws_); break;
     case Method::SymplecticEuler: symplecticEuler(sys, h, X, ws_); break;
