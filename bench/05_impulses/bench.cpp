@@ -46,9 +46,7 @@
 #include "physlab/world.hpp"
 
 #ifdef PHYSLAB_HAVE_BULLET
-#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
-#include <LinearMath/btScalar.h>
-#include <btBulletDynamicsCommon.h>
+#include "../support/bullet_world.hpp"
 #endif
 
 using namespace physlab;
@@ -133,101 +131,7 @@ void timeOurs(const Scene& scene, const Settings& settings, int steps, RunResult
 // ----- Bullet ----------------------------------------------------------------------------------
 
 #ifdef PHYSLAB_HAVE_BULLET
-btVector3 toBt(const Vec3& v) { return btVector3(v.x(), v.y(), v.z()); }
-Vec3 fromBt(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
-
-// Our World's pair rules (World::computeContacts), installed in place of Bullet's products.
-btScalar minRestitution(const btCollisionObject* a, const btCollisionObject* b) {
-  return std::min(a->getRestitution(), b->getRestitution());
-}
-btScalar meanFriction(const btCollisionObject* a, const btCollisionObject* b) {
-  return std::sqrt(a->getFriction() * b->getFriction());
-}
-
-// A Bullet world holding the same scene: shapes, masses, diagonal inertias, restitution,
-// friction and initial states taken from our descriptions.
-class BulletWorld {
- public:
-  BulletWorld(const Scene& scene, const Settings& settings) {
-    world_.setGravity(toBt(settings.gravity));
-    btContactSolverInfo& info = world_.getSolverInfo();
-    info.m_numIterations = settings.iterations;
-    info.m_restitutionVelocityThreshold = settings.restitution_threshold;
-    info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) add(scene.bodies[i], scene.states[i]);
-  }
-  ~BulletWorld() {
-    // The world's destructor touches its objects: take them out while they still exist
-    for (auto it = bodies_.rbegin(); it != bodies_.rend(); ++it) world_.removeRigidBody(it->get());
-  }
-  BulletWorld(const BulletWorld&) = delete;
-  BulletWorld& operator=(const BulletWorld&) = delete;
-
-  void step(double h) { world_.stepSimulation(h, 0); }  // maxSubSteps = 0: one step of exactly h
-
-  // The deepest penetration and the number of contact points of the manifolds now.
-  std::pair<double, int> contacts() {
-    double deepest = 0.0;
-    int points = 0;
-    btDispatcher* dispatcher = world_.getDispatcher();
-    for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
-      const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
-      for (int k = 0; k < manifold->getNumContacts(); ++k) {
-        deepest = std::max(deepest, -static_cast<double>(manifold->getContactPoint(k).getDistance()));
-        ++points;
-      }
-    }
-    return {deepest, points};
-  }
-
-  Vec3 position(int i) const { return fromBt(bodies_[static_cast<std::size_t>(i)]->getWorldTransform().getOrigin()); }
-  Vec3 velocity(int i) const { return fromBt(bodies_[static_cast<std::size_t>(i)]->getLinearVelocity()); }
-  int size() const { return static_cast<int>(bodies_.size()); }
-
- private:
-  void add(const BodyDescription& body, const BodyState& state) {
-    std::unique_ptr<btCollisionShape> shape;
-    if (const auto* sphere = std::get_if<Sphere>(&body.shape)) {
-      shape = std::make_unique<btSphereShape>(sphere->radius);
-    } else if (const auto* box = std::get_if<Box>(&body.shape)) {
-      shape = std::make_unique<btBoxShape>(toBt(box->half_extents));
-    } else if (const auto* plane = std::get_if<Plane>(&body.shape)) {
-      shape = std::make_unique<btStaticPlaneShape>(toBt(plane->normal), plane->offset);
-    } else {
-      throw InvalidInput(std::string("the Bullet scene has no ") + shapeName(body.shape));
-    }
-    const Mat3& I = body.inertia_body;
-    if (!body.fixed && !I.isApprox(Mat3(I.diagonal().asDiagonal()))) {
-      throw InvalidInput("the Bullet scene takes diagonal body inertias only");
-    }
-    const double mass = body.fixed ? 0.0 : body.mass;
-    const btVector3 inertia = body.fixed ? btVector3(0, 0, 0) : toBt(I.diagonal());
-    const btTransform pose(btQuaternion(state.q.x(), state.q.y(), state.q.z(), state.q.w()), toBt(state.x));
-    motions_.push_back(std::make_unique<btDefaultMotionState>(pose));
-    btRigidBody::btRigidBodyConstructionInfo info(mass, motions_.back().get(), shape.get(), inertia);
-    info.m_restitution = body.epsilon;
-    info.m_friction = body.mu;
-    bodies_.push_back(std::make_unique<btRigidBody>(info));
-    btRigidBody& rb = *bodies_.back();
-    if (!body.fixed) {
-      const Mat3 R = state.q.normalized().toRotationMatrix();
-      rb.setLinearVelocity(toBt(state.P / body.mass));
-      rb.setAngularVelocity(toBt(R * I.inverse() * R.transpose() * state.L));
-    }
-    rb.setActivationState(DISABLE_DEACTIVATION);
-    shapes_.push_back(std::move(shape));
-    world_.addRigidBody(&rb);
-  }
-
-  btDefaultCollisionConfiguration config_;
-  btCollisionDispatcher dispatcher_{&config_};
-  btDbvtBroadphase broadphase_;
-  btSequentialImpulseConstraintSolver solver_;
-  btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &config_};
-  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
-  std::vector<std::unique_ptr<btDefaultMotionState>> motions_;
-  std::vector<std::unique_ptr<btRigidBody>> bodies_;
-};
+using bench::BulletWorld;
 
 void measureBullet(const Scene& scene, const Settings& settings, int steps, RunResult& r) {
   BulletWorld world(scene, settings);
@@ -316,10 +220,8 @@ int main(int argc, char** argv) {
     const auto stepsFor = [&](int n) { return options.quick ? 20 : (n <= 500 ? 180 : 90); };
 
 #ifdef PHYSLAB_HAVE_BULLET
-    gCalculateCombinedRestitutionCallback = &minRestitution;
-    gCalculateCombinedFrictionCallback = &meanFriction;
-    const std::string bullet = "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100) +
-                               (sizeof(btScalar) == 8 ? " (double)" : " (float)");
+    bench::useOurPairRules();
+    const std::string bullet = bench::bulletName();
 #endif
     Settings sequential, simultaneous;
     sequential.method = ResponseMethod::Sequential;

@@ -4,6 +4,8 @@
 // by Bullet and ODE in the same run. Reported: wall time per step, the largest drift of any cube
 // from where it started (the bar: a pyramid stands when no cube moves more than 5 cm in
 // 10 s), and what broke.
+// Then the iteration counts swept on the 210-cube pyramid (cost against drift), and Lab 5's box rain
+// with Lab 5's impulses, with the resting solver and in Bullet (see rainRuns()).
 //
 // What each engine does per step, on the same bodies (boxes, masses, inertias, initial poses, no
 // initial velocity, gravity 9.81 m/s^2, restitution 0, pair friction mu = 0.5, the geometric mean
@@ -66,8 +68,7 @@
 #include "physlab/resting.hpp"
 
 #ifdef PHYSLAB_HAVE_BULLET
-#include <LinearMath/btScalar.h>
-#include <btBulletDynamicsCommon.h>
+#include "../support/bullet_world.hpp"
 #endif
 #ifdef PHYSLAB_HAVE_ODE
 #include <ode/ode.h>
@@ -126,75 +127,25 @@ class OurSimulation : public Simulation {
 // ----- Bullet ----------------------------------------------------------------------------------
 
 #ifdef PHYSLAB_HAVE_BULLET
-btVector3 toBt(const Vec3& v) { return btVector3(v.x(), v.y(), v.z()); }
-
-btScalar meanFriction(const btCollisionObject* a, const btCollisionObject* b) {
-  return std::sqrt(a->getFriction() * b->getFriction());
-}
-btScalar minRestitution(const btCollisionObject* a, const btCollisionObject* b) {
-  return std::min(a->getRestitution(), b->getRestitution());
+// Bullet with restingWorldSettings() where it has a knob (bench/support/bullet_world.hpp) and
+// `iterations` solver iterations.
+Settings bulletSettings(int iterations) {
+  Settings s = restingWorldSettings();
+  s.iterations = iterations;
+  return s;
 }
 
 class BulletSimulation : public Simulation {
  public:
-  explicit BulletSimulation(const Scene& scene, int iterations = kIterations) {
-    world_.setGravity(toBt(restingWorldSettings().gravity));
-    btContactSolverInfo& info = world_.getSolverInfo();
-    info.m_numIterations = iterations;
-    info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) add(scene.bodies[i], scene.states[i]);
-  }
-  ~BulletSimulation() override {
-    // The world's destructor touches its objects: take them out while they still exist
-    for (auto it = bodies_.rbegin(); it != bodies_.rend(); ++it) world_.removeRigidBody(it->get());
-  }
-  BulletSimulation(const BulletSimulation&) = delete;
-  BulletSimulation& operator=(const BulletSimulation&) = delete;
-
-  void step(double h) override { world_.stepSimulation(h, 0); }
-  Vec3 position(int i) const override {
-    const btVector3& x = bodies_[static_cast<std::size_t>(i)]->getWorldTransform().getOrigin();
-    return Vec3(x.x(), x.y(), x.z());
-  }
-  int size() const override { return static_cast<int>(bodies_.size()); }
-  int contacts() const override {
-    int points = 0;
-    btDispatcher* dispatcher = world_.getDispatcher();
-    for (int m = 0; m < dispatcher->getNumManifolds(); ++m) points += dispatcher->getManifoldByIndexInternal(m)->getNumContacts();
-    return points;
-  }
+  explicit BulletSimulation(const Scene& scene, int iterations = kIterations) : world_(scene, bulletSettings(iterations)) {}
+  void step(double h) override { world_.step(h); }
+  Vec3 position(int i) const override { return world_.position(i); }
+  int size() const override { return world_.size(); }
+  int contacts() const override { return world_.contacts().second; }
+  const bench::BulletWorld& world() const { return world_; }
 
  private:
-  void add(const BodyDescription& body, const BodyState& state) {
-    std::unique_ptr<btCollisionShape> shape;
-    if (const auto* box = std::get_if<Box>(&body.shape)) {
-      shape = std::make_unique<btBoxShape>(toBt(box->half_extents));
-    } else if (const auto* plane = std::get_if<Plane>(&body.shape)) {
-      shape = std::make_unique<btStaticPlaneShape>(toBt(plane->normal), plane->offset);
-    } else {
-      throw InvalidInput(std::string("the Bullet pyramid has no ") + shapeName(body.shape));
-    }
-    const double mass = body.fixed ? 0.0 : body.mass;
-    const btVector3 inertia = body.fixed ? btVector3(0, 0, 0) : toBt(body.inertia_body.diagonal());
-    const btTransform pose(btQuaternion(state.q.x(), state.q.y(), state.q.z(), state.q.w()), toBt(state.x));
-    motions_.push_back(std::make_unique<btDefaultMotionState>(pose));
-    btRigidBody::btRigidBodyConstructionInfo info(mass, motions_.back().get(), shape.get(), inertia);
-    info.m_restitution = body.epsilon;
-    info.m_friction = body.mu;
-    bodies_.push_back(std::make_unique<btRigidBody>(info));
-    bodies_.back()->setActivationState(DISABLE_DEACTIVATION);
-    shapes_.push_back(std::move(shape));
-    world_.addRigidBody(bodies_.back().get());
-  }
-
-  btDefaultCollisionConfiguration config_;
-  btCollisionDispatcher dispatcher_{&config_};
-  btDbvtBroadphase broadphase_;
-  btSequentialImpulseConstraintSolver solver_;
-  mutable btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &config_};
-  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
-  std::vector<std::unique_ptr<btDefaultMotionState>> motions_;
-  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  bench::BulletWorld world_;
 };
 #endif
 
@@ -507,6 +458,68 @@ Split splitResting(const Scene& scene) {
   return s;
 }
 
+// The box rain of Lab 5's benchmark (boxRain(N, 5): 1 kg boxes and spheres dropped into a fixed
+// container) with three solvers in the same run: Lab 5's sequential impulses (its default
+// Settings: position correction 0.2 beyond 5 mm), our World with the matrix-free cone PGS at
+// 50 sweeps (restingWorldSettings(): every touching point below 1 m/s is resting, Baumgarte 0.2
+// beyond the 1 mm slop) and Bullet with 50 iterations and the same threshold. Reported: the
+// fastest window's time per step, the deepest contact over the run and in the last step (what
+// each position correction left).
+struct RainRun {
+  std::string engine;
+  double per_step = INFINITY;  // fastest window [s]
+  double max_penetration = 0.0, last_penetration = 0.0;  // untimed first run [m]
+};
+
+constexpr int kRainSweeps = 50;  // Lab 5's Settings::iterations, and Bullet's iterations here
+
+std::vector<RainRun> rainRuns(int count, int steps, int windows) {
+  const Scene scene = boxRain(count, 5);
+  struct Side {
+    std::string engine;
+    std::function<void()> make;                // a fresh world from the scene (untimed)
+    std::function<void()> step;
+    std::function<double()> deepest;           // deepest contact now [m]
+  };
+  std::unique_ptr<World> impulses, pgs;
+  std::vector<Side> sides = {
+      {"PhysLab impulses (Lab 5, sequential)", [&] { impulses = std::make_unique<World>(scene); },
+       [&] { impulses->step(kStep); }, [&] { return impulses->diagnostics().max_penetration; }},
+      {"PhysLab PGS matrix-free (cone, 50 sweeps)",
+       [&] {
+         pgs = std::make_unique<World>(scene, restingWorldSettings(),
+                                       std::make_shared<LcpContactSolver>(oursSettings(LcpMethod::Pgs, kRainSweeps, true)));
+       },
+       [&] { pgs->step(kStep); }, [&] { return pgs->diagnostics().max_penetration; }},
+  };
+#ifdef PHYSLAB_HAVE_BULLET
+  std::unique_ptr<BulletSimulation> bullet;
+  sides.push_back({"Bullet (sleeping off, 50 iterations)", [&] { bullet = std::make_unique<BulletSimulation>(scene, kRainSweeps); },
+                   [&] { bullet->step(kStep); }, [&] { return bullet->world().contacts().first; }});
+#endif
+  std::vector<RainRun> runs(sides.size());
+  // The first run of each is untimed (warm-up) and measures the penetration
+  for (std::size_t e = 0; e < sides.size(); ++e) {
+    runs[e].engine = sides[e].engine;
+    sides[e].make();
+    for (int n = 0; n < steps; ++n) {
+      sides[e].step();
+      runs[e].last_penetration = sides[e].deepest();
+      runs[e].max_penetration = std::max(runs[e].max_penetration, runs[e].last_penetration);
+    }
+  }
+  // Timed windows, the engines alternating
+  for (int w = 0; w < windows; ++w) {
+    for (std::size_t e = 0; e < sides.size(); ++e) {
+      sides[e].make();
+      Stopwatch clock;
+      for (int n = 0; n < steps; ++n) sides[e].step();
+      runs[e].per_step = std::min(runs[e].per_step, clock.seconds() / steps);
+    }
+  }
+  return runs;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -539,10 +552,9 @@ int main(int argc, char** argv) {
               << "\n  resting (PGS): " << oursSettings(LcpMethod::Pgs, kIterations, true).toString() << "\n";
     int bullet_index = -1;
 #ifdef PHYSLAB_HAVE_BULLET
-    gCalculateCombinedRestitutionCallback = &minRestitution;
-    gCalculateCombinedFrictionCallback = &meanFriction;
-    const std::string bullet = "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100) +
-                               (sizeof(btScalar) == 8 ? " (double" : " (float") + ", sleeping off, 20 iterations)";
+    bench::useOurPairRules();
+    std::string bullet = bench::bulletName();
+    bullet.insert(bullet.size() - 1, ", sleeping off, 20 iterations");
     bullet_index = static_cast<int>(engines.size());
     engines.push_back({bullet, "Bullet (sleeping off)", "linespoints pt 7", 1.0, peer_budget,
                        [](const Scene& s) { return std::make_unique<BulletSimulation>(s); }});
@@ -705,6 +717,21 @@ int main(int argc, char** argv) {
     std::cout << "\nLab 6 benchmark: work against precision, " << wp_cubes << " cubes\n";
     wp_table.print(std::cout);
 
+    // The box rain with impulses, with the resting solver and in Bullet
+    const std::vector<int> rain_sizes = options.quick ? std::vector<int>{100} : std::vector<int>{100, 500};
+    const int rain_steps = options.quick ? 20 : 180;
+    Table rain_table({"bodies", "engine", "ms per step", "time / Bullet's", "max penetration [mm]", "last step [mm]"});
+    for (const int count : rain_sizes) {
+      const std::vector<RainRun> rain = rainRuns(count, rain_steps, options.quick ? 1 : 3);
+      for (const RainRun& r : rain) {
+        const bool peer = rain.size() == 3;
+        rain_table.add({std::to_string(count), r.engine, fmt(1e3 * r.per_step), peer ? fmt(r.per_step / rain[2].per_step) : "-",
+                        fmt(1e3 * r.max_penetration), fmt(1e3 * r.last_penetration)});
+      }
+    }
+    std::cout << "\nLab 6 benchmark: the box rain, " << rain_steps << " steps of 1/60 s, fastest window\n";
+    rain_table.print(std::cout);
+
     const std::string path = table.saveMarkdown(options.out + "/lab06_bench.md");
     const std::string phases_path = phases.saveMarkdown(options.out + "/lab06_bench_phases.md");
     {
@@ -720,6 +747,13 @@ int main(int argc, char** argv) {
       out << "\nWork against precision, " << wp_cubes << " cubes (best of 2 windows).\n\n" << wp_file.rdbuf();
     }
     std::remove(wp_path.c_str());
+    const std::string rain_path = rain_table.saveMarkdown(options.out + "/lab06_bench_rain.md");
+    {
+      std::ifstream rain_file(rain_path);
+      std::ofstream out(path, std::ios::app);
+      out << "\nThe box rain, " << rain_steps << " steps (fastest window).\n\n" << rain_file.rdbuf();
+    }
+    std::remove(rain_path.c_str());
 #ifdef PHYSLAB_HAVE_ODE
     dCloseODE();
 #endif
