@@ -109,6 +109,11 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     for (const auto& [x, y] : d) x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
   }
   for (const Marker& m : markers_) x_lo = std::min(x_lo, m.x), x_hi = std::max(x_hi, m.x);
+  // The key goes right of the plot, or below it when its longest title would take more than
+  // about a fifth of the width from the plot
+  std::size_t longest = 0;
+  for (const Series& s : series_) longest = std::max(longest, s.title.size());
+  const char* key = longest > 28 ? "set key below\n" : "set key outside right\n";
   std::vector<std::string> paths;
   const std::vector<std::pair<std::string, std::string>> terminals = {
       {".png", "pngcairo size 960,600 enhanced font 'Sans,11'"},
@@ -120,7 +125,7 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
        << "set output " << quoted(path) << "\n"
        << "set title " << quoted(title_) << "\n"
        << "set xlabel " << quoted(xlabel_) << "\nset ylabel " << quoted(ylabel_) << "\n"
-       << "set grid\nset key outside right\nset format y '%g'\n";
+       << "set grid\n" << key << "set format y '%g'\n";
     if (log_x_) gp << "set logscale x\nset format x '10^{%L}'\n";
     if (log_y_) gp << "set logscale y\nset format y '10^{%L}'\n";
     if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
