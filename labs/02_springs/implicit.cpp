@@ -10,17 +10,17 @@ namespace physlab {
 ImplicitStats implicitEulerUpdate(const SpringSystem& sys, VecX& X, double h,
                                   const ImplicitSettings& settings, ImplicitWorkspace& ws) {
   // Assemble A = M - h df/dv - h^2 df/dx and the product (df/dx) v, spring by spring
-  // TODO(student): ws.A.setZero() and ws.Kv.setZero(); per spring k, springJacobian(..., JacobianForm::Definite).
+  // TODO(student): ws.A.setZero(), ws.Kv.setZero(); per spring k, springJacobian(..., JacobianForm::Definite).
   // +block on (a, a) and (b, b), -block on (a, b); pinned rows and columns become the identity
-  // TODO(student): ws.A.addDiagonal(a, block) for a free a (same for b); ws.A.addSpring(k, -block) when both are free.
+  // TODO(student): ws.A.addDiagonal(a, block) if a is free (same for b); ws.A.addSpring(k, -block) if both are.
   // Add the masses and the drag on the diagonal; a pinned particle gets the identity
-  // TODO(student): ws.A.addDiagonal(i, (m_i + h drag) * identity) for free particles, the identity for pinned ones.
+  // TODO(student): ws.A.addDiagonal(i, (m_i + h drag) * identity) if i is free, the identity if pinned.
   // Form b = h (f + h (df/dx) v), zero for pinned particles
   // TODO(student): sys.forces(X, ws.b) gives f, in place.
   // Solve A dv = b with the chosen solver
-  // TODO(student): ws.A.solveCG(ws.b, ws.dv, ...) (ws.dv holds the last step's dv) or ws.A.solveLDLT(); throw NumericalFailure when they fail.
+  // TODO(student): ws.A.solveCG(ws.b, ws.dv, ...) (from the last step's dv) or solveLDLT(); throw NumericalFailure on failure.
   // Update the velocities, then move with the new velocities
-  // TODO(student): v += dv, then x += h v; return the iterations and the residual |A dv - b| / |b| (ws.A.multiply()).
+  // TODO(student): v += dv, then x += h v; return the iterations and |A dv - b| / |b| (ws.A.multiply()).
   notImplemented("implicitEulerUpdate", "Lab 2 handout, section 3", sys, X, h, settings, ws);
 }
 

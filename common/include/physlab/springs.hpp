@@ -103,9 +103,9 @@ struct CGResult {
 /// diagonal per particle and one off the diagonal per spring's pair of particles (a, b) (the
 /// block (b, a) is its transpose and is not stored). The pattern is built once from the network;
 /// each step refills the values in place (setZero(), addDiagonal(), addSpring()) and solves with
-/// solveCG() or solveLDLT(), which allocate nothing after the first solve of each kind (LDLT:
-/// the pattern is analysed once and only factorised per step; Eigen's factorisation keeps its
-/// own temporaries). Springs that join the same pair share one block.
+/// solveCG(), which allocates nothing, or solveLDLT(), which analyses the pattern on its first
+/// call only and then just factorises (Eigen's factorisation and solve still make two temporary
+/// allocations per call). Springs that join the same pair share one block.
 ///
 /// A particle's row and column hold what was added to them: for the identity rows of pinned
 /// particles, add the identity on the diagonal and nothing off it.
@@ -223,7 +223,9 @@ enum class LinearSolver {
 /// Settings of implicitEulerStep().
 struct ImplicitSettings {
   LinearSolver solver = LinearSolver::ConjugateGradient;  ///< which solver
-  double cg_tolerance = 1e-10;  ///< CG stops at this relative residual
+  /// CG stops at this relative residual: on the benchmark's cloth 1e-3 moves the positions by 2-7 mm,
+  /// well below implicit Euler's own 45-49 mm error at h = 1/60 (handout, section 3).
+  double cg_tolerance = 1e-3;
   int cg_max_iterations = 2000;  ///< CG gives up (NumericalFailure) after this many iterations
 };
 

@@ -63,13 +63,17 @@ SpringMatrix::SpringMatrix(const SpringNetwork& network) {
   diagonal_entries_.reserve(6 * particles);
   for (Index i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
-      for (int r = c; r < 3; ++r) diagonal_entries_.push_back(valuePosition(lower_, 3 * i + r, 3 * i + c));
+      for (int r = c; r < 3; ++r) {
+        diagonal_entries_.push_back(valuePosition(lower_, 3 * i + r, 3 * i + c));
+      }
     }
   }
   off_diagonal_entries_.reserve(9 * pairs_.size());
   for (const Pair& pair : pairs_) {
     for (int c = 0; c < 3; ++c) {
-      for (int r = 0; r < 3; ++r) off_diagonal_entries_.push_back(valuePosition(lower_, 3 * pair.j + r, 3 * pair.i + c));
+      for (int r = 0; r < 3; ++r) {
+        off_diagonal_entries_.push_back(valuePosition(lower_, 3 * pair.j + r, 3 * pair.i + c));
+      }
     }
   }
 }
@@ -90,7 +94,8 @@ void SpringMatrix::addSpring(std::size_t k, const Mat3& block) {
 
 void SpringMatrix::multiply(const VecX& x, VecX& y) const {
   for (std::size_t i = 0; i < diagonal_.size(); ++i) {
-    y.segment<3>(3 * static_cast<Index>(i)).noalias() = diagonal_[i] * x.segment<3>(3 * static_cast<Index>(i));
+    const Index at = 3 * static_cast<Index>(i);
+    y.segment<3>(at).noalias() = diagonal_[i] * x.segment<3>(at);
   }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const Pair& pair = pairs_[k];
@@ -102,7 +107,10 @@ void SpringMatrix::multiply(const VecX& x, VecX& y) const {
 
 MatX SpringMatrix::toDense() const {
   MatX A = MatX::Zero(3 * count(), 3 * count());
-  for (Index i = 0; i < count(); ++i) A.block<3, 3>(3 * i, 3 * i) = diagonal_[static_cast<std::size_t>(i)];
+  for (std::size_t i = 0; i < diagonal_.size(); ++i) {
+    const Index at = 3 * static_cast<Index>(i);
+    A.block<3, 3>(at, at) = diagonal_[i];
+  }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     A.block<3, 3>(3 * pairs_[k].i, 3 * pairs_[k].j) += off_diagonal_[k];
     A.block<3, 3>(3 * pairs_[k].j, 3 * pairs_[k].i) += off_diagonal_[k].transpose();
@@ -179,7 +187,7 @@ void SpringMatrix::refillCsc() {
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const Index* at = off_diagonal_entries_.data() + 9 * k;
     for (int c = 0, e = 0; c < 3; ++c) {
-      for (int r = 0; r < 3; ++r) values[at[e++]] = off_diagonal_[k](c, r);  // lower_ holds the transpose
+      for (int r = 0; r < 3; ++r) values[at[e++]] = off_diagonal_[k](c, r);  // the transpose
     }
   }
 }
