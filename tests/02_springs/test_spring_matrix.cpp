@@ -110,7 +110,7 @@ TEST_CASE("spring matrix: CG starts from the guess it is given and reports failu
   CHECK(x.norm() == 0.0);
 }
 
-TEST_CASE("spring matrix: bad sizes and a singular block are refused with a message", "[common]") {
+TEST_CASE("spring matrix: bad sizes, indices, networks and a singular block are refused", "[common]") {
   const SpringNetwork net = network();
   SpringMatrix A(net);
   fillRandom(net, A, 3);
@@ -119,6 +119,14 @@ TEST_CASE("spring matrix: bad sizes and a singular block are refused with a mess
   VecX short_x = VecX::Zero(5);
   CHECK_THROWS_WITH(A.solveCG(VecX::Ones(48), short_x, 1e-6, 10), Contains("CG starting guess has size 5"));
   CHECK_THROWS_WITH(A.solveLDLT(VecX::Ones(3), x), Contains("LDLT right-hand side"));
+  CHECK_THROWS_WITH(A.multiply(VecX::Ones(3), x), Contains("multiply: x has size 3"));
+  CHECK_THROWS_WITH(A.multiply(x, x), Contains("y must not be x"));
+  CHECK_THROWS_WITH(A.addDiagonal(16, Mat3::Identity()), Contains("particle 16 of 16"));
+  CHECK_THROWS_WITH(A.addSpring(net.springs.size(), Mat3::Identity()),
+                    Contains("spring " + std::to_string(net.springs.size())));
+  SpringNetwork bad = net;
+  bad.springs[2].b = 99;
+  CHECK_THROWS_WITH(SpringMatrix(bad), Contains("spring 2 names particle 99"));
   A.addDiagonal(7, -A.toDense().block<3, 3>(21, 21));  // particle 7's block becomes zero
   CHECK_THROWS_AS(A.solveCG(VecX::Ones(48), x, 1e-6, 10), NumericalFailure);
   CHECK_THROWS_WITH(A.solveCG(VecX::Ones(48), x, 1e-6, 10), Contains("particle 7"));

@@ -111,7 +111,7 @@ struct CGResult {
 /// particles, add the identity on the diagonal and nothing off it.
 class SpringMatrix {
  public:
-  /// The pattern of `network` (validated by the caller), all blocks zero.
+  /// The pattern of `network` (validated: see validate()), all blocks zero.
   explicit SpringMatrix(const SpringNetwork& network);
   SpringMatrix(const SpringMatrix&) = delete;
   SpringMatrix& operator=(const SpringMatrix&) = delete;
@@ -120,11 +120,12 @@ class SpringMatrix {
   /// Sets every block to zero, keeping the pattern.
   void setZero();
   /// Adds `block` to the diagonal block of particle `i`; keep the diagonal blocks symmetric.
-  void addDiagonal(Index i, const Mat3& block) { diagonal_[static_cast<std::size_t>(i)] += block; }
+  /// Throws InvalidInput when `i` is not a particle.
+  void addDiagonal(Index i, const Mat3& block);
   /// Adds `block` to the off-diagonal block (a, b) of spring `k` of the network, and so its
-  /// transpose to (b, a).
+  /// transpose to (b, a). Throws InvalidInput when `k` is not a spring.
   void addSpring(std::size_t k, const Mat3& block);
-  /// \f$y = A x\f$ over the blocks; `x` and `y` have length 3n and must not be the same vector.
+  /// \f$y = A x\f$ over the blocks; `x` has length 3n, `y` is resized to it and must not be `x`.
   void multiply(const VecX& x, VecX& y) const;
   /// The whole matrix, dense (3n x 3n), for tests and small examples.
   MatX toDense() const;

@@ -21,6 +21,7 @@ Index valuePosition(const Eigen::SparseMatrix<double>& m, Index row, Index col) 
 }  // namespace
 
 SpringMatrix::SpringMatrix(const SpringNetwork& network) {
+  validate(network);
   const Index n = network.masses.size();
   const std::size_t particles = static_cast<std::size_t>(n);
   diagonal_.assign(particles, Mat3::Zero());
@@ -83,7 +84,19 @@ void SpringMatrix::setZero() {
   std::fill(off_diagonal_.begin(), off_diagonal_.end(), Mat3::Zero());
 }
 
+void SpringMatrix::addDiagonal(Index i, const Mat3& block) {
+  if (i < 0 || i >= count()) {
+    throw InvalidInput("SpringMatrix::addDiagonal: particle " + std::to_string(i) + " of " +
+                       std::to_string(count()));
+  }
+  diagonal_[static_cast<std::size_t>(i)] += block;
+}
+
 void SpringMatrix::addSpring(std::size_t k, const Mat3& block) {
+  if (k >= slots_.size()) {
+    throw InvalidInput("SpringMatrix::addSpring: spring " + std::to_string(k) + " of " +
+                       std::to_string(slots_.size()));
+  }
   const Slot& slot = slots_[k];
   if (slot.transposed) {
     off_diagonal_[slot.pair] += block.transpose();
@@ -93,6 +106,9 @@ void SpringMatrix::addSpring(std::size_t k, const Mat3& block) {
 }
 
 void SpringMatrix::multiply(const VecX& x, VecX& y) const {
+  requireSize(x.size(), 3 * count(), "SpringMatrix::multiply: x");
+  if (&x == &y) throw InvalidInput("SpringMatrix::multiply: y must not be x");
+  y.resize(x.size());
   for (std::size_t i = 0; i < diagonal_.size(); ++i) {
     const Index at = 3 * static_cast<Index>(i);
     y.segment<3>(at).noalias() = diagonal_[i] * x.segment<3>(at);
