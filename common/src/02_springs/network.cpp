@@ -142,6 +142,7 @@ SpringNetwork makeJelly(Index n, double size, double height, double mass, double
 SpringSystem::SpringSystem(SpringNetwork network) : network_(std::move(network)) {
   validate(network_);
   inverse_masses_ = network_.masses.cwiseInverse();  // 1 / inf = 0 for pinned particles
+  workspace_ = std::make_unique<ImplicitWorkspace>(network_);
 }
 
 VecX SpringSystem::restState() const {
@@ -151,9 +152,15 @@ VecX SpringSystem::restState() const {
 }
 
 VecX SpringSystem::forces(const VecX& X) const {
+  VecX f;
+  forces(X, f);
+  return f;
+}
+
+void SpringSystem::forces(const VecX& X, VecX& f) const {
   requireSize(X.size(), size(), "spring network state");
   const ConstPoints x = positions(X), v = velocities(X);
-  VecX f = VecX::Zero(positionSize());
+  f.setZero(positionSize());
   Points F(f.data(), 3, count());
   for (const Spring& s : network_.springs) {
     const Vec3 fa = springForce(s, x.col(s.a), x.col(s.b), v.col(s.a), v.col(s.b));
@@ -166,7 +173,6 @@ VecX SpringSystem::forces(const VecX& X) const {
     F.col(i) += network_.masses[i] * network_.gravity - network_.drag * v.col(i);
     if (ground_on) F.col(i) += groundForce(network_.ground, x.col(i), v.col(i));
   }
-  return f;
 }
 
 double SpringSystem::energy(const VecX& X) const {
@@ -215,7 +221,7 @@ ImplicitStats implicitEulerStep(const SpringSystem& sys, VecX& X, double h,
   sys.validateState(X);
   requirePositive(settings.cg_tolerance, "CG tolerance");
   if (settings.cg_max_iterations < 1) throw InvalidInput("CG max iterations must be at least 1");
-  return implicitEulerUpdate(sys, X, h, settings);
+  return implicitEulerUpdate(sys, X, h, settings, sys.implicitWorkspace());
 }
 
 }  // namespace physlab
