@@ -10,6 +10,8 @@
 #include "physlab/integrators.hpp"
 #include "physlab/rigid.hpp"
 
+#include "../allocation_counter.hpp"
+
 #ifdef PHYSLAB_HAVE_MUJOCO
 #include <mujoco/mujoco.h>
 
@@ -33,10 +35,11 @@ const Vec3 kOmega0(1e-3, 1.0, 0.0);
 constexpr double kStep = 1.0 / 60.0;
 constexpr int kSteps = 1200;  // 20 s
 
-// Least wall time of `rounds` calls of `sweep`: the machine is shared, and the fastest round is
-// the one least disturbed by other processes, for every engine alike.
+// Least wall time of `rounds` calls of `sweep`, after one warm-up call: the machine is shared,
+// and the fastest round is the one least disturbed by other processes, for every engine alike.
 template <class Sweep>
 double fastest(int rounds, Sweep&& sweep) {
+  sweep();
   double best = INFINITY;
   for (int r = 0; r < rounds; ++r) {
     Stopwatch clock;
@@ -47,8 +50,9 @@ double fastest(int rounds, Sweep&& sweep) {
 }
 constexpr int kRounds = 5;
 
-// Seconds per body-step for `count` free tumbling bodies sharing one description.
-double oursPerBodyStep(Method method, int count, int sweeps) {
+// Seconds per body-step for `count` free tumbling bodies sharing one description; `allocations`
+// gets the heap allocations of one more sweep, per body-step.
+double oursPerBodyStep(Method method, int count, int sweeps, double& allocations) {
   const RigidBodySystem sys(RigidBody(1.0, kInertia));
   std::mt19937_64 rng(3);
   std::normal_distribution<double> normal;
@@ -64,6 +68,9 @@ double oursPerBodyStep(Method method, int count, int sweeps) {
       for (VecX& X : states) integrator.step(sys, X, kStep);
     }
   });
+  allocations = static_cast<double>(bench::allocationsOf([&] {
+                  for (VecX& X : states) integrator.step(sys, X, kStep);
+                })) / count;
   return seconds / (static_cast<double>(sweeps) * count);
 }
 
@@ -114,11 +121,11 @@ double anchorPerBodyStep(int count, int sweeps, double& difference) {
       for (State13& X : states) anchorStep(X, kStep, 1.0, I_inv);
     }
   });
-  // The same steps with ours, from the same start: kRounds x sweeps of them
+  // The same steps with ours, from the same start: (1 + kRounds) x sweeps of them, the warm-up too
   Integrator integrator(Method::RK4);
   difference = 0.0;
   for (int i = 0; i < count; ++i) {
-    for (int n = 0; n < kRounds * sweeps; ++n) integrator.step(sys, ours[static_cast<std::size_t>(i)], kStep);
+    for (int n = 0; n < (1 + kRounds) * sweeps; ++n) integrator.step(sys, ours[static_cast<std::size_t>(i)], kStep);
     difference = std::max(difference, (ours[static_cast<std::size_t>(i)] - states[static_cast<std::size_t>(i)]).cwiseAbs().maxCoeff());
   }
   return seconds / (static_cast<double>(sweeps) * count);
@@ -261,7 +268,10 @@ int main(int argc, char** argv) {
     Table table({"engine", "method", "body-steps per second", "energy drift after 20 s (h = 1/60)"});
     double ours_rk4_cost = 0.0, ours_rk4_drift = 0.0;
     for (Method method : {Method::SymplecticEuler, Method::RK4}) {
-      const double cost = oursPerBodyStep(method, count, sweeps), drift = oursDrift(method);
+      double allocations = 0.0;
+      const double cost = oursPerBodyStep(method, count, sweeps, allocations), drift = oursDrift(method);
+      std::cout << "PhysLab " << methodName(method) << ": heap allocations per body-step "
+                << (bench::allocationsCounted() ? fmt(allocations) : std::string("not counted")) << "\n";
       if (method == Method::RK4) {
         ours_rk4_cost = cost;
         ours_rk4_drift = drift;
