@@ -123,7 +123,9 @@ class RigidBodySystem final : public System {
   /// The body-fixed forces at their current world points \f$p = x + R\,r_{body}\f$; empty (no
   /// allocation) for a body without any. Gravity is not among them: it acts at the centre of
   /// mass, so the derivative adds \f$M g\f$ to the force directly (it has no torque).
-  std::vector<AppliedForce> appliedForces(const VecX& X) const;
+  std::vector<AppliedForce> appliedForces(const VecX& X) const {
+    return forces_.empty() ? std::vector<AppliedForce>() : placedForces(X);
+  }
   /// Kinetic energy \f$\frac{|P|^2}{2M} + \frac12 L^T I^{-1} L\f$ [J] (with the normalised q).
   double kineticEnergy(const VecX& X) const;
 
@@ -132,6 +134,8 @@ class RigidBodySystem final : public System {
   void computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const override;
 
  private:
+  // appliedForces() of a body with body-fixed forces
+  std::vector<AppliedForce> placedForces(const VecX& X) const;
   RigidBody body_;
   std::vector<BodyForce> forces_;
   Vec3 gravity_;

@@ -57,9 +57,8 @@ VecX RigidBodySystem::makeState(const Vec3& x, const Quat& q, const Vec3& P, con
   return X;
 }
 
-std::vector<AppliedForce> RigidBodySystem::appliedForces(const VecX& X) const {
+std::vector<AppliedForce> RigidBodySystem::placedForces(const VecX& X) const {
   std::vector<AppliedForce> applied;
-  if (forces_.empty()) return applied;  // a free body: no vector, nor R, in its derivative
   const Vec3 x = X.head<3>();
   applied.reserve(forces_.size());
   const Mat3 R = orientationOf(X).normalized().toRotationMatrix();
