@@ -23,6 +23,15 @@ void System::positionRate(const VecX& X, Eigen::Ref<VecX> qdot) const {
   computePositionRate(X, qdot);
 }
 
+Eigen::Map<const VecX> System::positionRateView(const VecX& X, Eigen::Ref<VecX> scratch) const {
+  const Index nq = positionSize();
+  checkSize(*this, X.size(), nq + velocitySize(), "state");
+  if (positionRateIsVelocity()) return Eigen::Map<const VecX>(X.data() + nq, nq);
+  checkSize(*this, scratch.size(), nq, "position rate");
+  computePositionRate(X, scratch);
+  return Eigen::Map<const VecX>(scratch.data(), nq);
+}
+
 void System::velocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
   checkSize(*this, X.size(), size(), "state");
   checkSize(*this, pdot.size(), velocitySize(), "velocity rate");

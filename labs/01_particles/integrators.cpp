@@ -21,7 +21,7 @@ void symplecticEuler(const System& sys, double h, VecX& X, Workspace& ws) {
   // Kick: update the velocities with the forces at the old positions
   // TODO(student): sys.velocityRate(X, ws.k1.head(np)), then update X.tail(np) (np = sys.velocitySize()).
   // Drift: move the positions with the new velocities
-  // TODO(student): sys.positionRate(X, ...) now sees the new velocities; update X.head(nq).
+  // TODO(student): X.head(nq) += h qdot, qdot from sys.positionRateView(X, ws.k2.head(nq)) (it now sees the new velocities).
   notImplemented("symplecticEuler", "Lab 1 handout, section 3.2", sys, h, X, ws);
 }
 
@@ -53,7 +53,7 @@ void verlet(const System& sys, double h, VecX& X, Workspace& ws) {
   // Kick the velocities by half a step
   // TODO(student): p += h/2 pdot(q_n, p_n).
   // Drift the positions by a full step with the half-step velocities
-  // TODO(student): q += h qdot(q_n, p_{n+1/2}).
+  // TODO(student): q += h qdot(q_n, p_{n+1/2}), qdot from sys.positionRateView(X, ws.k2.head(nq)).
   // Kick the velocities by the second half step with the forces at the new positions
   // TODO(student): p += h/2 pdot(q_{n+1}, p_{n+1/2}).
   notImplemented("verlet", "Lab 1 handout, section 3.5", sys, h, X, ws);

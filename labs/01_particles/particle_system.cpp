@@ -14,9 +14,10 @@ void ParticleSystem::computePositionRate(const VecX& X, Eigen::Ref<VecX> qdot) c
 
 void ParticleSystem::computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
   // Accumulate every force into F
-  // TODO(student): zero pdot, view it as Points F(pdot.data(), 3, count()), call accumulate() of each force on view(X).
-  // Divide by the masses: multiply by 1/m, which is 0 for a pinned particle
-  // TODO(student): scale column i of F by inverseMasses()[i].
+  // TODO(student): zero pdot, view it as Points F(pdot.data(), 3, count()), call accumulate() of each of accumulatedForces() on view(X).
+  // Divide by the masses (multiply by 1/m, which is 0 for a pinned particle), and add the
+  // uniform acceleration to the free particles
+  // TODO(student): scale column i of F by inverseMasses()[i]; add uniformAcceleration() where inverseMasses()[i] > 0.
   notImplemented("ParticleSystem::computeVelocityRate", "Lab 1 handout, section 2", X, pdot);
 }
 

@@ -23,8 +23,7 @@ void symplecticEuler(const System& sys, double h, VecX& X, Workspace& ws) {
   sys.velocityRate(X, ws.k1.head(np));
   X.tail(np) += h * ws.k1.head(np);
   // Drift: move the positions with the new velocities
-  sys.positionRate(X, ws.k2.head(nq));
-  X.head(nq) += h * ws.k2.head(nq);
+  X.head(nq) += h * sys.positionRateView(X, ws.k2.head(nq));
 }
 
 void midpoint(const System& sys, double h, VecX& X, Workspace& ws) {
@@ -65,8 +64,7 @@ void verlet(const System& sys, double h, VecX& X, Workspace& ws) {
   sys.velocityRate(X, ws.k1.head(np));
   X.tail(np) += (0.5 * h) * ws.k1.head(np);
   // Drift the positions by a full step with the half-step velocities
-  sys.positionRate(X, ws.k2.head(nq));
-  X.head(nq) += h * ws.k2.head(nq);
+  X.head(nq) += h * sys.positionRateView(X, ws.k2.head(nq));
   // Kick the velocities by the second half step with the forces at the new positions
   sys.velocityRate(X, ws.k1.head(np));
   X.tail(np) += (0.5 * h) * ws.k1.head(np);

@@ -16,9 +16,13 @@ void ParticleSystem::computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) c
   pdot.setZero();
   Points F(pdot.data(), 3, count());
   const ParticleView s = view(X);
-  for (const auto& force : forces_) force->accumulate(s, F);
-  // Divide by the masses: multiply by 1/m, which is 0 for a pinned particle
-  F.array().rowwise() *= inverse_masses_.transpose().array();
+  for (const Force* force : accumulated_forces_) force->accumulate(s, F);
+  // Divide by the masses (multiply by 1/m, which is 0 for a pinned particle), and add the
+  // uniform acceleration to the free particles
+  for (Index i = 0; i < count(); ++i) {
+    F.col(i) *= inverse_masses_[i];
+    if (inverse_masses_[i] > 0.0) F.col(i) += uniform_acceleration_;
+  }
 }
 
 }  // namespace physlab

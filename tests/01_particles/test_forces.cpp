@@ -62,12 +62,13 @@ double relative(const Mat3X& a, const Mat3X& b) { return (a - b).norm() / std::m
 
 }  // namespace
 
-TEST_CASE("forces: uniform gravity is m g and minus the gradient of its potential", "[lab01][pts=1]") {
-  const Cloud c = randomCloud(5, 2.0, 0.0);
+TEST_CASE("forces: uniform gravity is m g, nothing on a pinned particle, and minus the gradient of its potential", "[lab01][pts=1]") {
+  Cloud c = randomCloud(5, 2.0, 0.0);
+  c.m[3] = std::numeric_limits<double>::infinity();  // pinned: m g would be infinite (or NaN)
   const Vec3 g = randomVec3(10.0);
   const UniformGravity gravity(g);
   Mat3X expected(3, 5);
-  for (Index i = 0; i < 5; ++i) expected.col(i) = c.m[i] * g;
+  for (Index i = 0; i < 5; ++i) expected.col(i) = i == 3 ? Vec3::Zero() : Vec3(c.m[i] * g);
   // Both are exact up to round-off; central differences of a linear potential are exact too.
   CHECK(relative(forceOf(gravity, c), expected) < 1e-12);
   CHECK(relative(minusGradient(gravity, c), expected) < 1e-8);

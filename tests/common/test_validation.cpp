@@ -32,8 +32,14 @@ TEST_CASE("validation: a state of the wrong size or with a NaN is refused", "[co
   CHECK_THROWS_WITH(integrator.step(osc, wrong, 0.1), Contains("has size 3, expected 2"));
   VecX nan = VecX::Ones(2);
   nan[1] = std::nan("");
-  CHECK_THROWS_WITH(integrator.step(osc, nan, 0.1), Contains("non-finite entry"));
-  // A finite state that a step makes non-finite: the method diverged, not the input
+  // The step checks its result only: a NaN passed in stays NaN (and spreads: the drift carries
+  // v into x) and is reported with both causes
+  CHECK_THROWS_WITH(integrator.step(osc, nan, 0.1), Contains("non-finite entry") && Contains("passed in"));
+  // Implicit Euler checks its input first, so Newton's method does not take it for non-convergence
+  nan = VecX::Ones(2);
+  nan[0] = std::nan("");
+  CHECK_THROWS_AS(Integrator(Method::ImplicitEuler).step(osc, nan, 0.1), InvalidInput);
+  // A finite state that a step makes non-finite: the method diverged
   Integrator euler(Method::ExplicitEuler);
   VecX huge = VecX::Constant(2, 1e300);
   CHECK_THROWS_WITH(euler.step(HarmonicOscillator(1e10), huge, 1.0), Contains("diverged"));
@@ -59,6 +65,22 @@ TEST_CASE("validation: bad force parameters are refused", "[common]") {
 TEST_CASE("validation: unknown integrator names are refused", "[common]") {
   CHECK(methodFromId("rk4") == Method::RK4);
   CHECK_THROWS_WITH(methodFromId("rk5"), Contains("unknown integrator 'rk5'"));
+}
+
+TEST_CASE("framework: positionRateView reads a particle system's velocities in place", "[common]") {
+  const ParticleSystem particles(VecX::Ones(2));
+  const VecX X = VecX::LinSpaced(12, 1.0, 12.0);
+  VecX scratch = VecX::Zero(6);
+  const Eigen::Map<const VecX> v = particles.positionRateView(X, scratch);
+  CHECK(v.data() == X.data() + 6);  // the velocities themselves, no copy
+  CHECK(scratch.isZero());
+  // A system whose position rate is computed writes it into the scratch
+  const HarmonicOscillator osc(2.0);
+  const VecX Y = Eigen::Vector2d(0.5, -3.0);
+  VecX qdot(1);
+  const Eigen::Map<const VecX> rate = osc.positionRateView(Y, qdot);
+  CHECK(rate.data() == qdot.data());
+  CHECK(rate[0] == -3.0);
 }
 
 TEST_CASE("framework: the finite-difference Jacobian matches the analytic one", "[common]") {

@@ -63,7 +63,8 @@ struct NewtonSettings {
 
 /// \f$X_{n+1} = X_n + h f(X_n)\f$. Handout: Lab 1, section 3.1.
 void explicitEuler(const System& sys, double h, VecX& X, Workspace& ws);
-/// \f$p_{n+1} = p_n + h\,\dot p(q_n, p_n)\f$; \f$q_{n+1} = q_n + h\,\dot q(q_n, p_{n+1})\f$.
+/// \f$p_{n+1} = p_n + h\,\dot p(q_n, p_n)\f$; \f$q_{n+1} = q_n + h\,\dot q(q_n, p_{n+1})\f$, the
+/// drift reading \f$\dot q\f$ through sys.positionRateView() (no copy for particles).
 /// Handout: Lab 1, section 3.2.
 void symplecticEuler(const System& sys, double h, VecX& X, Workspace& ws);
 /// \f$X_m = X_n + \frac h2 f(X_n)\f$; \f$X_{n+1} = X_n + h f(X_m)\f$. Handout: Lab 1, section 3.3.
@@ -77,7 +78,8 @@ void trapezoid(const System& sys, double h, VecX& X, Workspace& ws);
 void rk4(const System& sys, double h, VecX& X, Workspace& ws);
 /// Velocity Verlet: \f$p_{n+1/2} = p_n + \frac h2 \dot p(q_n,p_n)\f$;
 /// \f$q_{n+1} = q_n + h\,\dot q(q_n, p_{n+1/2})\f$;
-/// \f$p_{n+1} = p_{n+1/2} + \frac h2 \dot p(q_{n+1}, p_{n+1/2})\f$. Handout: Lab 1, section 3.5.
+/// \f$p_{n+1} = p_{n+1/2} + \frac h2 \dot p(q_{n+1}, p_{n+1/2})\f$; the drift reads \f$\dot q\f$
+/// through sys.positionRateView(). Handout: Lab 1, section 3.5.
 void verlet(const System& sys, double h, VecX& X, Workspace& ws);
 /// Solve \f$G(X_{n+1}) = X_{n+1} - X_n - h f(X_{n+1}) = 0\f$ by Newton's method,
 /// \f$(\mathbb 1 - h\,\partial f/\partial X)\,\Delta X = -G\f$, with sys.jacobian(). Throws
@@ -99,8 +101,12 @@ class Integrator {
   /// \param newton Newton settings, used by Method::ImplicitEuler only
   explicit Integrator(Method method, NewtonSettings newton = {});
 
-  /// One step of size `h` on `X` in place. Throws InvalidInput if `h` is not positive and
-  /// finite, or `X` has the wrong size or a non-finite entry; afterwards calls sys.project(X).
+  /// One step of size `h` on `X` in place; afterwards calls sys.project(X). Throws InvalidInput
+  /// if `h` is not positive and finite or `X` has the wrong size, and NumericalFailure naming the
+  /// entry if `X` is not finite after the step: one check of the result per step, which also
+  /// catches a non-finite entry passed in (every method adds an increment to X, and a non-finite
+  /// entry stays non-finite), without telling it apart from a divergence. Implicit Euler checks
+  /// its input before Newton's method too (InvalidInput).
   void step(const System& sys, VecX& X, double h);
 
   /// The method this integrator uses.

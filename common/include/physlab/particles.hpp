@@ -5,10 +5,12 @@
 /// (all positions, then all velocities; world frame; metres and metres per second), so the
 /// positions are the first \f$3n\f$ entries and read as a 3 x n matrix with positions(). Its
 /// derivative is \f$\dot X = [v_1 \dots v_n,\ F_1/m_1 \dots F_n/m_n]\f$ where each \f$F_i\f$
-/// is the sum of every Force's contribution ("forces accumulate").
+/// is the sum of every Force's contribution ("forces accumulate"); a force that is a uniform
+/// acceleration (gravity) is added as that acceleration after the division.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +48,12 @@ class Force {
   /// Add \f$\partial F/\partial x\f$ and \f$\partial F/\partial v\f$ (each 3n x 3n, world frame)
   /// and return true, or return false when this force offers no analytic Jacobian (the default).
   virtual bool addJacobians(const ParticleView& s, MatX& dF_dx, MatX& dF_dv) const;
+  /// The constant acceleration \f$a\f$ this force gives every free particle, when it is
+  /// \f$m_i a\f$ on each (uniform gravity); empty for any other force (the default). A
+  /// ParticleSystem adds \f$a\f$ to the free particles after dividing the other forces by the
+  /// masses, instead of accumulating \f$m_i a\f$ and dividing it again: one pass less, and no
+  /// \f$\infty \cdot 0\f$ to avoid for a pinned particle.
+  virtual std::optional<Vec3> uniformAcceleration() const;
 };
 
 /// Uniform gravity \f$f^{(i)} = m_i\,g\f$ with potential \f$U = -\sum_i m_i\, g \cdot x_i\f$.
@@ -57,6 +65,8 @@ class UniformGravity final : public Force {
   void accumulate(const ParticleView& s, Points F) const override;
   double potential(const ParticleView& s) const override;
   bool addJacobians(const ParticleView& s, MatX& dF_dx, MatX& dF_dv) const override;
+  /// g: gravity accelerates every free particle alike.
+  std::optional<Vec3> uniformAcceleration() const override { return g; }
   const Vec3 g;  ///< gravitational acceleration, world frame [m/s^2]
 };
 
@@ -143,9 +153,16 @@ class ParticleSystem final : public System {
   const VecX& inverseMasses() const { return inverse_masses_; }
   /// The forces, in the order they were added.
   const std::vector<std::shared_ptr<const Force>>& forces() const { return forces_; }
+  /// The forces the derivative accumulates: forces() less those with a uniformAcceleration().
+  const std::vector<const Force*>& accumulatedForces() const { return accumulated_forces_; }
+  /// The sum of the forces' uniform accelerations (uniform gravity), world frame [m/s^2]: what
+  /// every free particle gets on top of its accumulated force divided by its mass.
+  const Vec3& uniformAcceleration() const { return uniform_acceleration_; }
   Index positionSize() const override { return 3 * count(); }
   Index velocitySize() const override { return 3 * count(); }
   std::string name() const override { return "particle system"; }
+  /// True: \f$\dot x = v\f$, so a drift reads the velocities in place (positionRateView()).
+  bool positionRateIsVelocity() const override { return true; }
 
   /// Builds a state from positions and velocities (each 3 x n); throws InvalidInput on a size
   /// mismatch or a non-finite entry.
@@ -162,6 +179,8 @@ class ParticleSystem final : public System {
   VecX masses_;
   VecX inverse_masses_;
   std::vector<std::shared_ptr<const Force>> forces_;
+  std::vector<const Force*> accumulated_forces_;
+  Vec3 uniform_acceleration_ = Vec3::Zero();
 };
 
 /// \name Diagnostics (student functions, Lab 1 section 4)

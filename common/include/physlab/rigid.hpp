@@ -120,8 +120,12 @@ class RigidBodySystem final : public System {
   /// Packs a state; throws InvalidInput for a zero or non-finite quaternion or non-finite vectors.
   /// The quaternion is normalised.
   VecX makeState(const Vec3& x, const Quat& q, const Vec3& P, const Vec3& L) const;
-  /// The forces at their current world points \f$p = x + R\,r_{body}\f$, plus gravity at \f$x\f$.
-  std::vector<AppliedForce> appliedForces(const VecX& X) const;
+  /// The body-fixed forces at their current world points \f$p = x + R\,r_{body}\f$; empty (no
+  /// allocation) for a body without any. Gravity is not among them: it acts at the centre of
+  /// mass, so the derivative adds \f$M g\f$ to the force directly (it has no torque).
+  std::vector<AppliedForce> appliedForces(const VecX& X) const {
+    return forces_.empty() ? std::vector<AppliedForce>() : placedForces(X);
+  }
   /// Kinetic energy \f$\frac{|P|^2}{2M} + \frac12 L^T I^{-1} L\f$ [J] (with the normalised q).
   double kineticEnergy(const VecX& X) const;
 
@@ -130,6 +134,8 @@ class RigidBodySystem final : public System {
   void computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const override;
 
  private:
+  // appliedForces() of a body with body-fixed forces
+  std::vector<AppliedForce> placedForces(const VecX& X) const;
   RigidBody body_;
   std::vector<BodyForce> forces_;
   Vec3 gravity_;

@@ -38,6 +38,15 @@ class System {
 
   /// \f$\dot q(q, p)\f$ into `qdot` (length positionSize()).
   void positionRate(const VecX& X, Eigen::Ref<VecX> qdot) const;
+  /// \f$\dot q(q, p)\f$ to read, without a copy where the system allows one: a view of `X`'s own
+  /// velocity part \f$p\f$ when positionRateIsVelocity(), otherwise positionRate() written into
+  /// `scratch` (length positionSize()) and a view of it. The view is valid until `X` or `scratch`
+  /// changes; `q += h * positionRateView(X, scratch)` is a drift.
+  Eigen::Map<const VecX> positionRateView(const VecX& X, Eigen::Ref<VecX> scratch) const;
+  /// Whether \f$\dot q = p\f$ exactly (particles: \f$\dot x = v\f$), so that positionRateView()
+  /// can hand out \f$p\f$ itself. False by default (a rigid body's \f$\dot q\f$ is not its
+  /// \f$p = [P, L]\f$).
+  virtual bool positionRateIsVelocity() const { return false; }
   /// \f$\dot p(q, p)\f$ into `pdot` (length velocitySize()); counts one force evaluation.
   void velocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const;
   /// The whole derivative \f$f(X) = [\dot q;\ \dot p]\f$ into `dXdt` (length size());

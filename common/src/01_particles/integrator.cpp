@@ -1,8 +1,25 @@
 #include "physlab/integrators.hpp"
 
+#include <cmath>
+
 #include "physlab/error.hpp"
 
 namespace physlab {
+
+namespace {
+
+// Index of the first non-finite entry of X, or -1. A sum is finite exactly when no entry is NaN
+// or infinite (barring overflow, which the search then clears): one vectorised pass in the
+// common case, the search only on failure.
+Index firstNonFinite(const VecX& X) {
+  if (std::isfinite(X.sum())) return -1;
+  for (Index i = 0; i < X.size(); ++i) {
+    if (!std::isfinite(X[i])) return i;
+  }
+  return -1;
+}
+
+}  // namespace
 
 Integrator::Integrator(Method method, NewtonSettings newton) : method_(method), newton_(newton) {
   if (newton_.max_iterations < 1) throw InvalidInput("Newton max_iterations must be at least 1");
@@ -11,8 +28,11 @@ Integrator::Integrator(Method method, NewtonSettings newton) : method_(method), 
 
 void Integrator::step(const System& sys, VecX& X, double h) {
   requirePositive(h, "step size h");
-  sys.validateState(X);
   const Index n = sys.size();
+  if (X.size() != n) requireSize(X.size(), n, sys.name() + " state");
+  // Newton's method would report a non-finite input as non-convergence; its Jacobian costs far
+  // more than this pass, so implicit Euler checks its input first.
+  if (method_ == Method::ImplicitEuler) sys.validateState(X);
   for (VecX* v : {&ws_.k1, &ws_.k2, &ws_.k3, &ws_.k4, &ws_.X_tmp}) v->resize(n);
   switch (method_) {
     case Method::ExplicitEuler: explicitEuler(sys, h, X, ws_); break;
@@ -24,11 +44,14 @@ void Integrator::step(const System& sys, VecX& X, double h) {
     case Method::ImplicitEuler: implicitEuler(sys, h, X, ws_, newton_); break;
   }
   sys.project(X);
-  // Finite input that came out non-finite: the method diverged (explicit Euler past its
-  // stability limit, say), which is not the caller's bad input
-  if (!X.allFinite()) {
-    throw NumericalFailure(methodName(method_) + " diverged: the state became non-finite with h = " +
-                           std::to_string(h) + " (a smaller step or a stable method may help)");
+  // One finiteness check per step, of the result only. Every method adds an increment to X, so a
+  // non-finite entry passed in stays non-finite (inf + finite = inf, NaN + anything = NaN) and is
+  // caught here too, at the cost of not telling it apart from a divergence: the message names both.
+  if (const Index bad = firstNonFinite(X); bad >= 0) {
+    throw NumericalFailure(methodName(method_) + " step with h = " + std::to_string(h) + " on the " + sys.name() +
+                           " left a non-finite entry at " + std::to_string(bad) +
+                           ": the state passed in had one, or the method diverged (a smaller step or a "
+                           "stable method may help)");
   }
 }
 

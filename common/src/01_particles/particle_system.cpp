@@ -11,6 +11,8 @@ bool Force::addJacobians(const ParticleView& /*s*/, MatX& /*dF_dx*/, MatX& /*dF_
   return false;
 }
 
+std::optional<Vec3> Force::uniformAcceleration() const { return std::nullopt; }
+
 UniformGravity::UniformGravity(const Vec3& g_) : g(g_) { requireFinite(g, "gravity g"); }
 
 NBodyGravity::NBodyGravity(double G_, double softening_) : G(G_), softening(softening_) {
@@ -58,6 +60,11 @@ void ParticleSystem::addForce(std::shared_ptr<const Force> force) {
                            std::to_string(count()));
       }
     }
+  }
+  if (const std::optional<Vec3> a = force->uniformAcceleration()) {
+    uniform_acceleration_ += *a;
+  } else {
+    accumulated_forces_.push_back(force.get());
   }
   forces_.push_back(std::move(force));
 }

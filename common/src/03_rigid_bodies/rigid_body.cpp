@@ -57,17 +57,12 @@ VecX RigidBodySystem::makeState(const Vec3& x, const Quat& q, const Vec3& P, con
   return X;
 }
 
-std::vector<AppliedForce> RigidBodySystem::appliedForces(const VecX& X) const {
-  const Vec3 x = X.head<3>();
+std::vector<AppliedForce> RigidBodySystem::placedForces(const VecX& X) const {
   std::vector<AppliedForce> applied;
-  // Exact count: a free body (no forces, no gravity) then allocates nothing in its derivative.
-  applied.reserve(forces_.size() + (gravity_.isZero() ? 0 : 1));
-  if (!forces_.empty()) {
-    // R only when a body-fixed force needs it: angularVelocity() builds it too
-    const Mat3 R = orientationOf(X).normalized().toRotationMatrix();
-    for (const BodyForce& f : forces_) applied.push_back({x + R * f.point_body, f.force_world});
-  }
-  if (!gravity_.isZero()) applied.push_back({x, body_.mass * gravity_});
+  const Vec3 x = X.head<3>();
+  applied.reserve(forces_.size());
+  const Mat3 R = orientationOf(X).normalized().toRotationMatrix();
+  for (const BodyForce& f : forces_) applied.push_back({x + R * f.point_body, f.force_world});
   return applied;
 }
 
