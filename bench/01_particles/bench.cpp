@@ -28,21 +28,25 @@ using namespace physlab;
 
 namespace {
 
+// Seconds per call of `work` over one batch of calls lasting at least `min_seconds`.
+template <class Work>
+double secondsPerBatch(Work& work, double min_seconds) {
+  Stopwatch clock;
+  long calls = 0;
+  do {
+    work();
+    ++calls;
+  } while (clock.seconds() < min_seconds);
+  return clock.seconds() / calls;
+}
+
 // Seconds per call of `work`, the best of several batches of at least `min_seconds` after one
 // warm-up batch: the minimum filters out other processes on a shared machine.
 template <class Work>
 double secondsPerCall(Work&& work, double min_seconds) {
   for (Stopwatch warm_up; warm_up.seconds() < 0.2 * min_seconds;) work();
   double best = 1e300;
-  for (int batch = 0; batch < 3; ++batch) {
-    Stopwatch clock;
-    long calls = 0;
-    do {
-      work();
-      ++calls;
-    } while (clock.seconds() < min_seconds);
-    best = std::min(best, clock.seconds() / calls);
-  }
+  for (int batch = 0; batch < 3; ++batch) best = std::min(best, secondsPerBatch(work, min_seconds));
   return best;
 }
 
@@ -51,21 +55,12 @@ double secondsPerCall(Work&& work, double min_seconds) {
 // periods of a shared machine's load.
 template <class A, class B>
 std::pair<double, double> secondsPerCallSideBySide(A&& a, B&& b, double min_seconds) {
-  const auto batch = [min_seconds](auto& work) {
-    Stopwatch clock;
-    long calls = 0;
-    do {
-      work();
-      ++calls;
-    } while (clock.seconds() < min_seconds);
-    return clock.seconds() / calls;
-  };
-  batch(a);
-  batch(b);
+  secondsPerBatch(a, min_seconds);
+  secondsPerBatch(b, min_seconds);
   std::pair<double, double> best{1e300, 1e300};
   for (int round = 0; round < 5; ++round) {
-    best.first = std::min(best.first, batch(a));
-    best.second = std::min(best.second, batch(b));
+    best.first = std::min(best.first, secondsPerBatch(a, min_seconds));
+    best.second = std::min(best.second, secondsPerBatch(b, min_seconds));
   }
   return best;
 }
