@@ -232,7 +232,8 @@ void manifoldPicture(const DemoOptions& options, std::vector<std::string>& writt
     edge.x = Vec3(0.0, 0.0, 0.35 * s2 + 0.4 * s2 - 0.05);
     cases.push_back({edge, "edge on edge: one point between the edges"});
     Pose corner;
-    corner.q = Quat::FromTwoVectors(Vec3(-1, -1, -1).normalized(), -Vec3::UnitZ());
+    // Turn the corner direction (-1, -1, -1) onto -z: about (1, -1, 0) by acos(1 / sqrt(3))
+    corner.q = Quat(Eigen::AngleAxisd(std::acos(1.0 / std::sqrt(3.0)), Vec3(1, -1, 0).normalized()));
     corner.x = Vec3(0.1, -0.1, 0.4 + a.half_extents.norm() - 0.05);
     cases.push_back({corner, "corner into a face: one point"});
     for (std::size_t k = 0; k < cases.size(); ++k) {

@@ -211,7 +211,7 @@ TEST_CASE("narrow phase: a box resting on a plane touches at its 4 bottom corner
   const double d = uniform(-1.0, 1.0), overlap = uniform(0.001, 0.1);
   const Box box(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
   // Turn the box's -z face to face -n, then spin it about n by a random angle.
-  const Quat down = Quat::FromTwoVectors(Vec3::UnitZ(), n);
+  const Quat down = rotationTaking(Vec3::UnitZ(), n);
   Pose pose;
   pose.q = Quat(Eigen::AngleAxisd(uniform(0.0, 6.28), n)) * down;
   pose.x = randomVec3(2.0);

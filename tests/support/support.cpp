@@ -28,6 +28,17 @@ Mat3 randomRotation() {
   return q.toRotationMatrix();
 }
 
+Quat rotationTaking(const Vec3& from, const Vec3& to) {
+  const Vec3 a = from.normalized(), b = to.normalized();
+  const Vec3 axis = a.cross(b);
+  const double sine = axis.norm(), cosine = a.dot(b);
+  if (sine > 1e-12) return Quat(Eigen::AngleAxisd(std::atan2(sine, cosine), axis / sine));
+  if (cosine > 0.0) return Quat::Identity();
+  // Opposite directions: any axis perpendicular to a will do
+  const Vec3 helper = std::abs(a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  return Quat(Eigen::AngleAxisd(M_PI, a.cross(helper).normalized()));
+}
+
 void run(Method method, const System& sys, VecX& X, double h, long steps,
          const std::function<void(long, const VecX&)>& observe) {
   Integrator integrator(method);

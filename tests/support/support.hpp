@@ -25,6 +25,10 @@ double uniform(double lo, double hi);
 Vec3 randomVec3(double scale);
 /// A random rotation matrix (uniform enough for test inputs).
 Mat3 randomRotation();
+/// The shortest rotation taking the direction of `from` to that of `to` (a half turn about a
+/// perpendicular axis when they are opposite). Eigen's Quaternion::FromTwoVectors does the same
+/// through an SVD whose templates cost 9 s of compile time in every file that calls it.
+Quat rotationTaking(const Vec3& from, const Vec3& to);
 
 /// Runs `steps` steps of `method` on `X` in place, calling `observe(n, X)` after each step.
 void run(Method method, const System& sys, VecX& X, double h, long steps,
