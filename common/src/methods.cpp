@@ -1,3 +1,4 @@
+#include <cmath>
 #include <stdexcept>
 
 #include "physlab/error.hpp"
@@ -51,6 +52,15 @@ int methodOrder(Method method) {
     case Method::ImplicitEuler: return 1;
   }
   throw std::logic_error("unknown Method");
+}
+
+double spectralRadius(const Eigen::Matrix2d& A) {
+  const double half_trace = 0.5 * A.trace(), det = A.determinant();
+  const double discriminant = half_trace * half_trace - det;
+  // A complex pair has |lambda|^2 = lambda conj(lambda) = det; of a real pair the root on the
+  // side of the trace is the larger
+  if (discriminant < 0.0) return std::sqrt(det);
+  return std::abs(half_trace) + std::sqrt(discriminant);
 }
 
 }  // namespace physlab

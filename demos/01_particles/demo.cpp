@@ -1,7 +1,5 @@
 // Lab 1 demo: how the integrators trade cost for accuracy, and where they break.
 // Writes energy-drift, work-precision and stability charts and an N-body animation.
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -133,7 +131,7 @@ void stabilityChart(const DemoOptions& options, std::vector<std::string>& writte
           A.col(j) = X;
         }
         s.x.push_back(hw);
-        s.y.push_back(A.eigenvalues().cwiseAbs().maxCoeff());
+        s.y.push_back(spectralRadius(A));
       }
     });
     chart.add(s);

@@ -68,12 +68,6 @@ class ConstantForce final : public Force {
   Mat3X c_;
 };
 
-Mat3X randomPoints(Index n, double scale) {
-  Mat3X p(3, n);
-  for (Index i = 0; i < n; ++i) p.col(i) = randomVec3(scale);
-  return p;
-}
-
 // n particles with unequal masses in [0.5, 3], the one at `pinned` given infinite mass.
 VecX massesWithPin(Index n, Index pinned) {
   VecX m(n);

@@ -24,12 +24,6 @@ class TestForce final : public Force {
   double U_;
 };
 
-Mat3X randomPoints(Index n, double scale) {
-  Mat3X p(3, n);
-  for (Index i = 0; i < n; ++i) p.col(i) = randomVec3(scale);
-  return p;
-}
-
 VecX randomMasses(Index n) {
   VecX m(n);
   for (Index i = 0; i < n; ++i) m[i] = uniform(0.5, 3.0);

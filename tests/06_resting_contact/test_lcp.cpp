@@ -12,13 +12,13 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-using Solver = LcpSolution (*)(const MatX&, const VecX&, const LcpOptions&);
+using LcpSolver = LcpSolution (*)(const MatX&, const VecX&, const LcpOptions&);
 
 LcpSolution pivoting(const MatX& A, const VecX& b, const LcpOptions& options) { return solveLcpPivoting(A, b, options); }
 LcpSolution lemke(const MatX& A, const VecX& b, const LcpOptions& options) { return solveLcpLemke(A, b, options); }
 
 // b >= 0 (some entries exactly zero): f = 0 solves it; 1 x 1 with b < 0: f = -b / a.
-void checkOneStepOracles(Solver solve) {
+void checkOneStepOracles(LcpSolver solve) {
   const Index n = static_cast<Index>(uniform(2, 8));
   const MatX A = randomSpd(n, 10.0);
   VecX b(n);
@@ -38,7 +38,7 @@ void checkOneStepOracles(Solver solve) {
 
 // A = [[2, 1], [1, 2]]: b = (-1, 1) clamps contact 0 alone, f = (1/2, 0), w = (0, 3/2);
 // b = (-3, -3) clamps both, f = (1, 1), w = 0.
-void checkTwoByTwo(Solver solve) {
+void checkTwoByTwo(LcpSolver solve) {
   MatX A(2, 2);
   A << 2.0, 1.0, 1.0, 2.0;
   const LcpSolution one = solve(A, VecX((VecX(2) << -1.0, 1.0).finished()), {});
@@ -52,7 +52,7 @@ void checkTwoByTwo(Solver solve) {
 }
 
 // A planted LCP on an SPD (unique solution) or P-matrix: the solver must return f* itself.
-void checkPlanted(Solver solve, const PlantedLcp& p, double cond) {
+void checkPlanted(LcpSolver solve, const PlantedLcp& p, double cond) {
   const Index n = p.A.rows();
   const LcpSolution s = solve(p.A, p.b, {});
   INFO("n " << n << ", cond " << cond << ", active " << p.active << ", free " << p.free << ", degenerate "
@@ -115,7 +115,7 @@ DuplicatedContacts duplicatedContacts() {
   return s;
 }
 
-void checkDuplicated(Solver solve) {
+void checkDuplicated(LcpSolver solve) {
   const DuplicatedContacts s = duplicatedContacts();
   const LcpSolution r = solve(s.A, s.b, {});
   INFO(s.A.rows() << " contacts on 6 dofs, pivots " << r.iterations);
@@ -137,7 +137,7 @@ struct Stack {
   VecX b, f;
 };
 
-Stack heavyOnLight(double ratio) {
+Stack heavyOnLightLcp(double ratio) {
   const double m_light = uniform(0.5, 2.0), m_heavy = ratio * m_light, g = uniform(5.0, 15.0);
   MatX J(2, 2);
   J << 1.0, 0.0, -1.0, 1.0;
@@ -235,7 +235,7 @@ TEST_CASE("pivoting: a singular pivot throws LcpFailure instead of returning NaN
 }
 
 TEST_CASE("pivoting and lemke: a heavy box on a light one is held exactly, where 10 PGS sweeps are far off", "[lab06][pts=2]") {
-  const Stack s = heavyOnLight(100.0);
+  const Stack s = heavyOnLightLcp(100.0);
   LcpOptions few;
   few.max_iterations = 10;
   few.tolerance = 0.0;

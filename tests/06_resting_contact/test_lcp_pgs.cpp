@@ -4,8 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-
 #include "lcp_support.hpp"
 
 using namespace physlab;
@@ -325,8 +323,11 @@ TEST_CASE("pgs cone: one sweep from a warm start, computed here: clamp and disc-
   for (Index c = 0; c < k; ++c) {
     const Vec3 before = f.segment<3>(3 * c);
     f(3 * c) = std::max(0.0, f(3 * c) - (A.row(3 * c).dot(f) + b(3 * c)) / A(3 * c, 3 * c));
-    const Eigen::Matrix2d block = A.block<2, 2>(3 * c + 1, 3 * c + 1);
-    const double lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(0.5 * (block + block.transpose())).eigenvalues()(1);
+    // Largest eigenvalue of the symmetric part [p q; q r] of the 2 x 2 tangent block, from
+    // det(S - lambda) = 0 (the solution takes another form of it)
+    const double p = A(3 * c + 1, 3 * c + 1), r = A(3 * c + 2, 3 * c + 2);
+    const double q = 0.5 * (A(3 * c + 1, 3 * c + 2) + A(3 * c + 2, 3 * c + 1));
+    const double lambda = 0.5 * (p + r + std::sqrt((p - r) * (p - r) + 4.0 * q * q));
     const Eigen::Vector2d w_T(A.row(3 * c + 1).dot(f) + b(3 * c + 1), A.row(3 * c + 2).dot(f) + b(3 * c + 2));
     f.segment<2>(3 * c + 1) -= w_T / lambda;
     const double radius = mu(c) * f(3 * c), length = f.segment<2>(3 * c + 1).norm();

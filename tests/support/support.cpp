@@ -22,6 +22,12 @@ Vec3 randomVec3(double scale) {
   return Vec3(uniform(-scale, scale), uniform(-scale, scale), uniform(-scale, scale));
 }
 
+Mat3X randomPoints(Index n, double scale) {
+  Mat3X p(3, n);
+  for (Index i = 0; i < n; ++i) p.col(i) = randomVec3(scale);
+  return p;
+}
+
 Mat3 randomRotation() {
   Quat q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
   q.normalize();

@@ -23,6 +23,8 @@ std::mt19937_64& rng();
 double uniform(double lo, double hi);
 /// Vector with entries uniform in [-scale, scale).
 Vec3 randomVec3(double scale);
+/// n points (3 x n) with entries uniform in [-scale, scale).
+Mat3X randomPoints(Index n, double scale);
 /// A random rotation matrix (uniform enough for test inputs).
 Mat3 randomRotation();
 /// The shortest rotation taking the direction of `from` to that of `to` (a half turn about a

@@ -39,6 +39,10 @@ std::string methodId(Method method);
 Method methodFromId(const std::string& id);
 /// Global order of accuracy of a method (error of a fixed-time run is \f$O(h^{order})\f$).
 int methodOrder(Method method);
+/// Spectral radius (largest \f$|\lambda|\f$) of a real 2 x 2 matrix, such as one step of a method
+/// on the harmonic oscillator: from \f$\lambda^2 - \operatorname{tr}A\,\lambda + \det A = 0\f$
+/// in closed form (Eigen's general eigensolver costs seconds of compile time in every file).
+double spectralRadius(const Eigen::Matrix2d& A);
 
 /// Scratch vectors a step may use, so that a step allocates nothing. Each has length size()
 /// of the system when a step starts: `k1`..`k4` for slopes, `X_tmp` for intermediate states.
