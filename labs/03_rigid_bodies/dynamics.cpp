@@ -35,9 +35,9 @@ void RigidBodySystem::computePositionRate(const VecX& X, Eigen::Ref<VecX> qdot) 
 }
 
 void RigidBodySystem::computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
-  // Total force and torque about the centre of mass: Pdot = F, Ldot = tau, gravity adding M g
-  // at the centre (no torque)
-  // TODO(student): wrenchAbout(X.head<3>(), appliedForces(X)); pdot = [F + M g; tau] (body_.mass, gravity_).
+  // Total force and torque about the centre of mass: Pdot = F, Ldot = tau (zero, with no sum to
+  // do, for a body without body-fixed forces), gravity adding M g at the centre (no torque)
+  // TODO(student): w = Wrench() if forces_ is empty, else wrenchAbout(X.head<3>(), appliedForces(X)); pdot = [F + M g; tau] (body_.mass, gravity_).
   notImplemented("RigidBodySystem::computeVelocityRate", "Lab 3 handout, section 4", X, pdot);
 }
 

@@ -42,9 +42,9 @@ void RigidBodySystem::computePositionRate(const VecX& X, Eigen::Ref<VecX> qdot) 
 }
 
 void RigidBodySystem::computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
-  // Total force and torque about the centre of mass: Pdot = F, Ldot = tau, gravity adding M g
-  // at the centre (no torque)
-  const Wrench w = wrenchAbout(X.head<3>(), appliedForces(X));
+  // Total force and torque about the centre of mass: Pdot = F, Ldot = tau (zero, with no sum to
+  // do, for a body without body-fixed forces), gravity adding M g at the centre (no torque)
+  const Wrench w = forces_.empty() ? Wrench() : wrenchAbout(X.head<3>(), appliedForces(X));
   pdot.head<3>() = w.force + body_.mass * gravity_;
   pdot.tail<3>() = w.torque;
 }

@@ -57,12 +57,12 @@ inline void requireNonNegative(double value, std::string_view what) {
   }
 }
 
-/// Throw InvalidInput naming `what` and the first bad entry unless every entry is finite.
+namespace detail {
+/// The failure half of requireFinite(): finds the first non-finite entry and throws InvalidInput
+/// naming it, or returns when there is none (a finite sum that overflowed). Kept out of line so
+/// that the check itself is a few instructions the compiler inlines into every caller.
 template <class Derived>
-void requireFinite(const Eigen::DenseBase<Derived>& values, std::string_view what) {
-  // A sum is finite exactly when no entry is NaN or infinite (barring overflow, which the loop
-  // below then clears): one vectorised pass in the common case, the search only on failure.
-  if (std::isfinite(values.sum())) return;
+[[gnu::cold, gnu::noinline]] void throwFirstNonFinite(const Eigen::DenseBase<Derived>& values, std::string_view what) {
   for (Index j = 0; j < values.cols(); ++j) {
     for (Index i = 0; i < values.rows(); ++i) {
       if (!std::isfinite(values(i, j))) {
@@ -71,6 +71,15 @@ void requireFinite(const Eigen::DenseBase<Derived>& values, std::string_view wha
       }
     }
   }
+}
+}  // namespace detail
+
+/// Throw InvalidInput naming `what` and the first bad entry unless every entry is finite.
+template <class Derived>
+void requireFinite(const Eigen::DenseBase<Derived>& values, std::string_view what) {
+  // A sum is finite exactly when no entry is NaN or infinite (barring overflow, which the search
+  // then clears): one vectorised pass in the common case, the search only on failure.
+  if (!std::isfinite(values.sum())) detail::throwFirstNonFinite(values, what);
 }
 
 /// Throw InvalidInput unless `actual == expected`, naming both sizes.

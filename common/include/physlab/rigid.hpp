@@ -142,8 +142,9 @@ class RigidBodySystem final : public System {
   bool renormalize_ = true;
 };
 
-/// The orientation of a rigid-body state, \f$q\f$ (not normalised).
-Quat orientationOf(const VecX& X);
+/// The orientation of a rigid-body state, \f$q\f$ (not normalised). Inline: every derivative
+/// evaluation reads it.
+inline Quat orientationOf(const VecX& X) { return Quat(X[3], X[4], X[5], X[6]); }
 
 /// The alternative the lecture compares: a torque-free body whose orientation is a rotation
 /// matrix, \f$X = [x_{(3)},\ R_{(9, column-major)},\ P_{(3)},\ L_{(3)}]\f$, with

@@ -32,8 +32,6 @@ RigidBody::RigidBody(double mass_, const Mat3& inertia_body_) : mass(mass_), ine
   inertia_body_inv = inertia_body.inverse();
 }
 
-Quat orientationOf(const VecX& X) { return Quat(X[3], X[4], X[5], X[6]); }
-
 RigidBodySystem::RigidBodySystem(RigidBody body, std::vector<BodyForce> forces, Vec3 gravity)
     : body_(std::move(body)), forces_(std::move(forces)), gravity_(std::move(gravity)) {
   requireFinite(gravity_, "gravity");
