@@ -107,8 +107,7 @@ class Integrator {
 
   /// One step of size `h` on `X` in place; afterwards calls sys.project(X). Throws InvalidInput
   /// if `h` is not positive and finite or `X` has the wrong size, and NumericalFailure naming the
-  /// entry if `X` is not finite after the step (checked before the projection, which keeps a
-  /// finite state finite and a non-finite one non-finite): one check of the result per step, which also
+  /// entry if `X` is not finite after the step: one check of the result per step, which also
   /// catches a non-finite entry passed in (every method adds an increment to X, and a non-finite
   /// entry stays non-finite), without telling it apart from a divergence. Implicit Euler checks
   /// its input before Newton's method too (InvalidInput).

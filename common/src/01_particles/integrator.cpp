@@ -43,20 +43,16 @@ void Integrator::step(const System& sys, VecX& X, double h) {
     case Method::Verlet: verlet(sys, h, X, ws_); break;
     case Method::ImplicitEuler: implicitEuler(sys, h, X, ws_, newton_); break;
   }
+  sys.project(X);
   // One finiteness check per step, of the result only. Every method adds an increment to X, so a
   // non-finite entry passed in stays non-finite (inf + finite = inf, NaN + anything = NaN) and is
   // caught here too, at the cost of not telling it apart from a divergence: the message names both.
-  // It reads X before project() does: the method has just written X in the same aligned pairs
-  // this sum reads, whereas a renormalised quaternion (entries 3-6 of a rigid body) straddles
-  // them, and a load that spans two pending stores waits for both to reach the cache. A
-  // projection keeps a finite state finite and a non-finite one non-finite, so nothing is missed.
   if (const Index bad = firstNonFinite(X); bad >= 0) {
     throw NumericalFailure(methodName(method_) + " step with h = " + std::to_string(h) + " on the " + sys.name() +
                            " left a non-finite entry at " + std::to_string(bad) +
                            ": the state passed in had one, or the method diverged (a smaller step or a "
                            "stable method may help)");
   }
-  sys.project(X);
 }
 
 }  // namespace physlab
