@@ -94,9 +94,9 @@ function(physlab_add_common)
 endfunction()
 
 # A test object library compiles as one file (a unity build): Catch2's and Eigen's templates are
-# then instantiated once per suite rather than once per file, which takes a quarter to a half
-# off a suite's compile time. So the files of one suite (visible, hidden) share one namespace: two of them must not
-# define the same helper name, not even in anonymous namespaces.
+# then instantiated once per suite rather than once per file, which takes a quarter to a half off
+# a suite's compile time. So the files of one suite (visible, hidden) share one namespace: two of
+# them must not define the same helper name, not even in anonymous namespaces.
 function(physlab_test_unity objects)
   target_precompile_headers(${objects} REUSE_FROM physlab_test_pch)
   set_target_properties(${objects} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)
