@@ -41,8 +41,7 @@ Quat rotationTaking(const Vec3& from, const Vec3& to) {
   if (sine > 1e-12) return Quat(Eigen::AngleAxisd(std::atan2(sine, cosine), axis / sine));
   if (cosine > 0.0) return Quat::Identity();
   // Opposite directions: any axis perpendicular to a will do
-  const Vec3 helper = std::abs(a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  return Quat(Eigen::AngleAxisd(M_PI, a.cross(helper).normalized()));
+  return Quat(Eigen::AngleAxisd(M_PI, a.unitOrthogonal()));
 }
 
 void run(Method method, const System& sys, VecX& X, double h, long steps,

@@ -58,28 +58,37 @@ inline void requireNonNegative(double value, std::string_view what) {
 }
 
 namespace detail {
-/// The failure half of requireFinite(): finds the first non-finite entry and throws InvalidInput
-/// naming it, or returns when there is none (a finite sum that overflowed). Kept out of line so
-/// that the check itself is a few instructions the compiler inlines into every caller.
+// The search half of firstNonFinite(), out of line and cold, so that the check itself is a few
+// instructions the compiler inlines into every caller.
 template <class Derived>
-[[gnu::cold, gnu::noinline]] void throwFirstNonFinite(const Eigen::DenseBase<Derived>& values, std::string_view what) {
+[[gnu::cold, gnu::noinline]] Index searchNonFinite(const Eigen::DenseBase<Derived>& values) {
   for (Index j = 0; j < values.cols(); ++j) {
     for (Index i = 0; i < values.rows(); ++i) {
-      if (!std::isfinite(values(i, j))) {
-        throw InvalidInput(std::string(what) + " has a non-finite entry at (" + std::to_string(i) + ", " +
-                           std::to_string(j) + ")");
-      }
+      if (!std::isfinite(values(i, j))) return j * values.rows() + i;
     }
   }
+  return -1;
+}
+
+// requireFinite()'s message, built out of line for the same reason.
+[[noreturn, gnu::cold, gnu::noinline]] inline void throwNonFinite(std::string_view what, Index row, Index col) {
+  throw InvalidInput(std::string(what) + " has a non-finite entry at (" + std::to_string(row) + ", " +
+                     std::to_string(col) + ")");
 }
 }  // namespace detail
+
+/// Column-major index of the first NaN or infinite entry of `values`, or -1 when every entry is
+/// finite. A sum is finite exactly when no entry is NaN or infinite (barring overflow, which the
+/// search then clears): one vectorised pass in the common case, the search only on failure.
+template <class Derived>
+Index firstNonFinite(const Eigen::DenseBase<Derived>& values) {
+  return std::isfinite(values.sum()) ? -1 : detail::searchNonFinite(values);
+}
 
 /// Throw InvalidInput naming `what` and the first bad entry unless every entry is finite.
 template <class Derived>
 void requireFinite(const Eigen::DenseBase<Derived>& values, std::string_view what) {
-  // A sum is finite exactly when no entry is NaN or infinite (barring overflow, which the search
-  // then clears): one vectorised pass in the common case, the search only on failure.
-  if (!std::isfinite(values.sum())) detail::throwFirstNonFinite(values, what);
+  if (const Index k = firstNonFinite(values); k >= 0) detail::throwNonFinite(what, k % values.rows(), k / values.rows());
 }
 
 /// Throw InvalidInput unless `actual == expected`, naming both sizes.

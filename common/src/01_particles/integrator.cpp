@@ -1,25 +1,8 @@
 #include "physlab/integrators.hpp"
 
-#include <cmath>
-
 #include "physlab/error.hpp"
 
 namespace physlab {
-
-namespace {
-
-// Index of the first non-finite entry of X, or -1. A sum is finite exactly when no entry is NaN
-// or infinite (barring overflow, which the search then clears): one vectorised pass in the
-// common case, the search only on failure.
-Index firstNonFinite(const VecX& X) {
-  if (std::isfinite(X.sum())) return -1;
-  for (Index i = 0; i < X.size(); ++i) {
-    if (!std::isfinite(X[i])) return i;
-  }
-  return -1;
-}
-
-}  // namespace
 
 Integrator::Integrator(Method method, NewtonSettings newton) : method_(method), newton_(newton) {
   if (newton_.max_iterations < 1) throw InvalidInput("Newton max_iterations must be at least 1");
