@@ -265,6 +265,10 @@ TEST_CASE("clipping: a square cut by a plane keeps its inside part and the two c
     if (cut.points[i].id == combineFeatures(1, 7) || cut.points[i].id == combineFeatures(3, 7)) {
       ++crossings;
       CHECK(cut.points[i].position.x() == Approx(c).margin(1e-15));
+      CHECK(cut.points[i].depth == 0.0);  // documented: a crossing is made with depth 0
+    } else {
+      // A kept corner is copied unchanged: corner k (id k) had depth 0.1 k (to one rounding).
+      CHECK(cut.points[i].depth == Approx(0.1 * cut.points[i].id).epsilon(1e-15));
     }
   }
   CHECK(crossings == 2);
@@ -295,6 +299,13 @@ TEST_CASE("reduction: 4 of a polygon's points, the deepest first, spanning most 
              &p3 = m.points[3].position;
   const double area = 0.5 * std::abs((p1 - p0).cross(p2 - p0).z()) + 0.5 * std::abs((p1 - p0).cross(p3 - p0).z());
   CHECK(area == Approx(2.0).epsilon(1e-12));
+  // Distances and areas are measured in the plane normal to the normal: lifting every other
+  // corner 0.8 along it (as contact midpoints at different depths are) changes nothing.
+  ContactPolygon lifted = octagon;
+  for (int k = 1; k < 8; k += 2) lifted.points[k].position.z() += 0.8;
+  const Manifold l = reduceContacts(Vec3::UnitZ(), lifted);
+  REQUIRE(l.count == 4);
+  for (int i = 0; i < 4; ++i) CHECK(l.points[i].id == m.points[i].id);
 }
 
 TEST_CASE("convex polyhedra: two boxes as polyhedra give the box-box normal and depth", "[lab04][pts=2]") {
