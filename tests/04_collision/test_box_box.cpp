@@ -122,6 +122,78 @@ TEST_CASE("box-box: a small box resting inside a large box's face touches at its
   CHECK((s.normal + m.normal).norm() < 1e-12);
 }
 
+TEST_CASE("box-box: a tilted box pressed into a face touches at each bottom corner with its own depth, as on a plane", "[lab04][pts=2]") {
+  for (int trial = 0; trial < 20; ++trial) {
+    // B is a wide slab; A is tilted by a small angle about B's x, so its 4 bottom corners lie at
+    // different heights, all below B's top face (z = 0.5 in B's frame) and well inside it.
+    const Box a(Vec3(uniform(0.2, 0.4), uniform(0.2, 0.4), uniform(0.2, 0.4)));
+    const Box b(Vec3(2.0, 2.0, 0.5));
+    const Pose pb = randomPose(1.0);
+    const Mat3 tilt = (Eigen::AngleAxisd(uniform(0.03, 0.1), Vec3::UnitX()) *
+                       Eigen::AngleAxisd(uniform(0.0, 6.28), Vec3::UnitZ())).toRotationMatrix();
+    std::vector<Vec3> corners;  // A's bottom corners about A's centre, in B's frame
+    for (int k = 0; k < 4; ++k) {
+      corners.push_back(tilt * Vec3((k & 1) ? a.half_extents.x() : -a.half_extents.x(),
+                                    (k & 2) ? a.half_extents.y() : -a.half_extents.y(), -a.half_extents.z()));
+    }
+    double low = 1e300, high = -1e300;
+    for (const Vec3& c : corners) low = std::min(low, c.z()), high = std::max(high, c.z());
+    // The deepest corner `deepest` below the face, the shallowest still 0.005-0.02 m below it.
+    const double deepest = (high - low) + uniform(0.005, 0.02);
+    const Vec3 centre(uniform(-0.5, 0.5), uniform(-0.5, 0.5), 0.5 - deepest - low);
+    Pose pa;
+    pa.q = (pb.q * Quat(tilt)).normalized();
+    pa.x = pb.toWorld(centre);
+    const Vec3 n = pb.q * Vec3::UnitZ();
+    const Manifold boxes = collideBoxBox(a, pa, b, pb);
+    const Manifold plane = collideBoxPlane(a, pa, Plane(n, n.dot(pb.x) + 0.5));
+    INFO("trial " << trial << ", depths from " << deepest - (high - low) << " to " << deepest);
+    for (const Manifold& m : {boxes, plane}) {
+      REQUIRE(m.count == 4);
+      CHECK((m.normal - n).norm() < 1e-9);  // B's top face, to the round-off of the rotations
+      for (const Vec3& c : corners) {
+        // The corner's own depth below the face, and the point half of it above the corner.
+        const double depth = 0.5 - (centre + c).z();
+        const Vec3 expected = pb.toWorld(centre + c + 0.5 * depth * Vec3::UnitZ());
+        bool found = false;
+        for (int i = 0; i < m.count; ++i) {
+          found = found || ((m.points[i].position - expected).norm() < 1e-9 &&  // round-off of the poses
+                            std::abs(m.points[i].depth - depth) < 1e-9);
+        }
+        CHECK(found);
+      }
+    }
+  }
+}
+
+TEST_CASE("box-box: a box resting face down keeps its feature ids when the scene moves rigidly", "[lab04][pts=1]") {
+  // A's bottom face and B's top face are exact ties on the SAT (the same overlap); which wins
+  // must not be left to round-off, or the ids (warm starting in Lab 5) flicker from step to step.
+  const Box a(Vec3(uniform(0.1, 0.3), uniform(0.1, 0.3), uniform(0.1, 0.3)));
+  const Box b(Vec3(uniform(1.0, 2.0), uniform(1.0, 2.0), uniform(0.5, 1.0)));
+  const double overlap = uniform(0.001, 0.05);
+  Pose pb;
+  Pose pa;
+  pa.q = Quat(Eigen::AngleAxisd(uniform(0.0, 6.28), Vec3::UnitZ()));
+  pa.x = Vec3(uniform(-0.5, 0.5), uniform(-0.5, 0.5), b.half_extents.z() + a.half_extents.z() - overlap);
+  const Manifold m0 = collideBoxBox(a, pa, b, pb);
+  REQUIRE(m0.count == 4);
+  std::vector<std::uint32_t> ids0;
+  for (int i = 0; i < 4; ++i) ids0.push_back(m0.points[i].id);
+  std::sort(ids0.begin(), ids0.end());
+  for (int trial = 0; trial < 30; ++trial) {
+    const Mat3 Q = randomRotation();
+    const Vec3 T = randomVec3(5.0);
+    const Manifold m = collideBoxBox(a, moved(pa, Q, T), b, moved(pb, Q, T));
+    INFO("motion " << trial);
+    REQUIRE(m.count == 4);
+    std::vector<std::uint32_t> ids;
+    for (int i = 0; i < 4; ++i) ids.push_back(m.points[i].id);
+    std::sort(ids.begin(), ids.end());
+    CHECK(ids == ids0);
+  }
+}
+
 TEST_CASE("box-box: crossed edges touch at one point between the two edges", "[lab04][pts=2]") {
   for (int trial = 0; trial < 20; ++trial) {
     // In a frame F: A turned 45 degrees about x (lowest edge along x), B about y (top edge along y).
@@ -193,6 +265,10 @@ TEST_CASE("clipping: a square cut by a plane keeps its inside part and the two c
     if (cut.points[i].id == combineFeatures(1, 7) || cut.points[i].id == combineFeatures(3, 7)) {
       ++crossings;
       CHECK(cut.points[i].position.x() == Approx(c).margin(1e-15));
+      CHECK(cut.points[i].depth == 0.0);  // documented: a crossing is made with depth 0
+    } else {
+      // A kept corner is copied unchanged: corner k (id k) had depth 0.1 k (to one rounding).
+      CHECK(cut.points[i].depth == Approx(0.1 * cut.points[i].id).epsilon(1e-15));
     }
   }
   CHECK(crossings == 2);
@@ -223,6 +299,13 @@ TEST_CASE("reduction: 4 of a polygon's points, the deepest first, spanning most 
              &p3 = m.points[3].position;
   const double area = 0.5 * std::abs((p1 - p0).cross(p2 - p0).z()) + 0.5 * std::abs((p1 - p0).cross(p3 - p0).z());
   CHECK(area == Approx(2.0).epsilon(1e-12));
+  // Distances and areas are measured in the plane normal to the normal: lifting every other
+  // corner 0.8 along it (as contact midpoints at different depths are) changes nothing.
+  ContactPolygon lifted = octagon;
+  for (int k = 1; k < 8; k += 2) lifted.points[k].position.z() += 0.8;
+  const Manifold l = reduceContacts(Vec3::UnitZ(), lifted);
+  REQUIRE(l.count == 4);
+  for (int i = 0; i < 4; ++i) CHECK(l.points[i].id == m.points[i].id);
 }
 
 TEST_CASE("convex polyhedra: two boxes as polyhedra give the box-box normal and depth", "[lab04][pts=2]") {

@@ -135,7 +135,9 @@ TEST_CASE("gjk: overlapping shapes are reported as overlapping", "[lab04][pts=1]
       Pose pa = randomPose(1.0), pb = randomPose(1.0);
       pa.x = pb.x + randomVec3(0.02);  // each contains a ball of 0.05 m about its centre
       INFO(pairName(a, b));
-      CHECK(gjkDistance(a, pa, b, pb).overlap);
+      const DistanceResult d = gjkDistance(a, pa, b, pb);
+      CHECK(d.overlap);
+      CHECK(d.distance == 0.0);  // documented: 0 when overlapping, never a negative depth
     }
   }
 }

@@ -204,6 +204,52 @@ TEST_CASE("narrow phase: a sphere whose centre is inside a box leaves through th
   REQUIRE(m.count == 1);
   CHECK(m.points[0].depth == Approx(r + inside).margin(1e-12));  // round-off only
   CHECK((m.normal - pbox.q * Vec3::UnitY()).norm() < 1e-12);
+  // Midway between the sphere's deepest point c - r e_y and the face point above the centre,
+  // (c_x, 0.7, c_z), in the box frame; round-off of the pose only.
+  const Vec3 c = pbox.toBody(pa.x);
+  const Vec3 expected(c.x(), 0.5 * (c.y() - r + 0.7), c.z());
+  CHECK((pbox.toBody(m.points[0].position) - expected).norm() < 1e-12);
+}
+
+TEST_CASE("narrow phase: spheres with coincident centres separate along +z", "[lab04][pts=1]") {
+  // The line of centres is undefined: the documented fallback is +z, and the depth is then the
+  // sum of the radii. A's deepest point c - r_A e_z and B's c + r_B e_z have their midpoint at
+  // c + (r_B - r_A)/2 e_z.
+  const double ra = uniform(0.2, 1.0), rb = uniform(0.2, 1.0);
+  Pose pa = randomPose(2.0), pb = randomPose(2.0);
+  pb.x = pa.x;
+  const Manifold m = collideSphereSphere(Sphere(ra), pa, Sphere(rb), pb);
+  REQUIRE(m.count == 1);
+  CHECK((m.normal - Vec3::UnitZ()).norm() == 0.0);  // a constant, not a computed direction
+  CHECK(m.points[0].depth == Approx(ra + rb).margin(1e-12));  // one addition
+  CHECK((m.points[0].position - (pa.x + 0.5 * (rb - ra) * Vec3::UnitZ())).norm() < 1e-12);  // round-off only
+}
+
+TEST_CASE("narrow phase: crossed capsules touch at one point between their cores, normal from B to A", "[lab04][pts=1]") {
+  for (int trial = 0; trial < 20; ++trial) {
+    // In a frame F: B's core along x through the origin, A's core at height H = r_A + r_B - overlap,
+    // at an angle phi to B's in the horizontal plane, crossing above (px, 0). The closest points
+    // of the two lines are (px, 0, 0) and (px, 0, H), inside both cores.
+    const Capsule a(uniform(0.1, 0.4), uniform(0.5, 1.0)), b(uniform(0.1, 0.4), uniform(0.5, 1.0));
+    const double overlap = uniform(0.001, 0.05), phi = uniform(0.3, M_PI - 0.3);
+    const double px = uniform(-0.4, 0.4), s = uniform(-0.4, 0.4);
+    const double H = a.radius + b.radius - overlap;
+    const Pose frame = randomPose(2.0);
+    const Vec3 dir_a(std::cos(phi), std::sin(phi), 0.0);
+    Pose pa, pb;
+    pb.q = (frame.q * rotationTaking(Vec3::UnitZ(), Vec3::UnitX())).normalized();
+    pb.x = frame.x;
+    pa.q = (frame.q * rotationTaking(Vec3::UnitZ(), dir_a)).normalized();
+    pa.x = frame.toWorld(Vec3(px, 0.0, H) + s * dir_a);
+    const Manifold m = collideCapsuleCapsule(a, pa, b, pb);
+    INFO("trial " << trial);
+    REQUIRE(m.count == 1);
+    CHECK((m.normal - frame.q * Vec3::UnitZ()).norm() < 1e-9);  // round-off of the rotations
+    CHECK(m.points[0].depth == Approx(overlap).margin(1e-9));
+    // Midway between A's lowest point (px, 0, H - r_A) and B's highest (px, 0, r_B).
+    const Vec3 expected(px, 0.0, 0.5 * (H - a.radius + b.radius));
+    CHECK((frame.toBody(m.points[0].position) - expected).norm() < 1e-9);
+  }
 }
 
 TEST_CASE("narrow phase: a box resting on a plane touches at its 4 bottom corners", "[lab04][pts=2]") {

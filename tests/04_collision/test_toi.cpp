@@ -122,6 +122,43 @@ TEST_CASE("toi: a spinning box falling on a plane is caught at its first touch",
   }
 }
 
+TEST_CASE("toi: a box spinning in place is caught when its edge first dips to the plane", "[lab04][pts=1]") {
+  // No linear motion at all: only the spin brings the box down, so a speed bound without the
+  // spin term sees nothing coming. Turned by theta about its x axis, the box reaches
+  // r(theta) = h_y |sin theta| + h_z |cos theta| below its centre, rising from h_z at theta = 0 to
+  // rho = |(h_y, h_z)| at theta = phi = atan2(h_y, h_z). The centre is h_z + g above the plane, so
+  // the box first touches at theta* = phi - acos((h_z + g) / rho): t* = theta* / omega.
+  const double tol = 1e-6;
+  for (int trial = 0; trial < 10; ++trial) {
+    const Box box(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
+    const double hy = box.half_extents.y(), hz = box.half_extents.z();
+    const double rho = std::hypot(hy, hz), phi = std::atan2(hy, hz);
+    const double g = uniform(0.2, 0.8) * (rho - hz);
+    const double omega = uniform(5.0, 20.0) * (uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0);
+    const double t_contact = (phi - std::acos((hz + g) / rho)) / std::abs(omega);
+    // The step ends at theta = phi, the deepest dip: overlapping there, so one sample suffices.
+    const double h = phi / std::abs(omega);
+    const double yaw = uniform(0.0, 6.28);
+    Pose pose;
+    pose.q = Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ()));
+    pose.x = Vec3(uniform(-1.0, 1.0), uniform(-1.0, 1.0), hz + g);
+    const Motion motion{Vec3::Zero(), omega * (pose.q * Vec3::UnitX())};
+    auto gap = [&](double t) {
+      const double theta = omega * t;
+      return hz + g - (hy * std::abs(std::sin(theta)) + hz * std::abs(std::cos(theta)));
+    };
+    REQUIRE(gap(t_contact) == Approx(0.0).margin(1e-12));  // the construction, checked
+    for (int k = 0; k < 2; ++k) {
+      const ToiResult r = kMethods[k](box, pose, motion, Plane(Vec3::UnitZ(), 0.0), Pose{}, Motion{}, h, tol);
+      INFO(kMethodNames[k] << ", trial " << trial << ", contact at " << t_contact << " s");
+      REQUIRE(r.hit);
+      CHECK(gap(r.time) >= -1e-12);       // apart, to the round-off of advance()
+      CHECK(gap(r.time) <= tol + 1e-12);  // by at most the tolerance
+      CHECK(r.time <= t_contact + 1e-12);  // not after the first touch
+    }
+  }
+}
+
 TEST_CASE("toi: a fast body is caught at a thin wall that a check at the step's end misses", "[lab04][pts=2]") {
   const double speed = uniform(200.0, 400.0), h = 1.0 / 60, tol = 1e-6;
   const std::vector<CollisionBody> scene = bulletAndWall(speed);

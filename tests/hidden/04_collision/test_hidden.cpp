@@ -41,6 +41,7 @@ TEST_CASE("hidden: parallel capsules lying side by side touch at both ends of th
   }
   CHECK(std::min(heights[0], heights[1]) == Approx(lo).margin(1e-9));
   CHECK(std::max(heights[0], heights[1]) == Approx(hi).margin(1e-9));
+  CHECK(m.points[0].id != m.points[1].id);  // ids are unique within a manifold (warm starting)
 }
 
 TEST_CASE("hidden: both time-of-impact methods agree on random pairs from a shape soup", "[lab04][pts=1][hidden]") {
