@@ -88,6 +88,31 @@ TEST_CASE("toi: spheres that pass each other or meet after the step report no co
   }
 }
 
+TEST_CASE("toi: a step or tolerance that is not positive is refused by name", "[lab04][pts=1]") {
+  // Two spheres at rest far apart: with valid arguments no contact, and a method that forgets a
+  // check returns normally here instead of looping on a bracket it can never shrink.
+  const Pose pa = randomPose(1.0);
+  Pose pb = pa;
+  pb.x += 5.0 * randomUnit();
+  const Sphere a(uniform(0.1, 0.5)), b(uniform(0.1, 0.5));
+  const double nan = std::nan("");
+  for (int k = 0; k < 2; ++k) {
+    INFO(kMethodNames[k]);
+    const auto query = [&](double h, double tolerance) {
+      return kMethods[k](a, pa, Motion{}, b, pb, Motion{}, h, tolerance);
+    };
+    CHECK_FALSE(query(1.0 / 60, 1e-6).hit);
+    for (double h : {0.0, -1.0 / 60, nan}) {
+      CHECK_THROWS_AS(query(h, 1e-6), InvalidInput);
+      CHECK_THROWS_WITH(query(h, 1e-6), Catch::Contains("step h"));
+    }
+    for (double tolerance : {0.0, -1e-6, nan}) {
+      CHECK_THROWS_AS(query(1.0 / 60, tolerance), InvalidInput);
+      CHECK_THROWS_WITH(query(1.0 / 60, tolerance), Catch::Contains("tolerance"));
+    }
+  }
+}
+
 TEST_CASE("toi: a spinning box falling on a plane is caught at its first touch", "[lab04][pts=2]") {
   const double h = 0.1, tol = 1e-6;
   const Box box(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));

@@ -303,6 +303,7 @@ DistanceResult distance(const Shape& a, const Pose& pose_a, const Shape& b, cons
 /// Both methods move the bodies with advance() over the step [0, h] and report the first time
 /// of contact \f$t_c\f$ to a distance `tolerance`: the returned time \f$t\f$ has the shapes apart
 /// (or touching) with a gap of at most `tolerance` [m], \f$t \le t_c\f$. A Plane must not move.
+/// Both throw InvalidInput, naming the argument, unless `h` and `tolerance` are positive and finite.
 ///@{
 
 /// The answer of a time-of-impact query.
