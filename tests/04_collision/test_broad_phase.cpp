@@ -161,6 +161,25 @@ TEST_CASE("sort and sweep: sweeps the axis of widest spread, testing exactly the
 TEST_CASE("uniform grid: same pairs as brute force on random scenes", "[lab04][pts=2]") {
   UniformGrid grid;
   checkRandomScenes(grid);
+  // Dense scenes in which most boxes are specks, so that the cell (twice the median edge) is far
+  // smaller than the rest, which cover 3 or 4 cells per axis: tens of thousands of (cell, box)
+  // entries and thousands of overlapping pairs, so that in a table sized to the entries some cells
+  // of a pair share a bucket, whatever the hash. A grid that pairs boxes by bucket instead of by
+  // cell then reports a pair twice, or a box with itself.
+  for (int scene = 0; scene < 4; ++scene) {
+    INFO("dense scene " << scene << " of specks and boxes over many cells");
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3 c(uniform(0.0, 0.3), uniform(0.0, 0.3), uniform(0.0, 0.3));
+      // Two in three are specks 0.01 m wide, so the cell is 0.02 m; the others, 0.05-0.06 m
+      // wide, cover 3 or 4 cells per axis, never more (which would set them aside as oversized).
+      const double half = i % 3 != 0 ? 0.005 : uniform(0.025, 0.03);
+      boxes.push_back(boxAround(c, Vec3::Constant(half)));
+    }
+    PairList pairs;
+    grid.findPairs(boxes, pairs);
+    CHECK_SAME_PAIRS(pairs, bruteForcePairs(boxes));
+  }
 }
 
 TEST_CASE("uniform grid: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1]") {
