@@ -7,6 +7,8 @@ namespace physlab {
 
 ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_a, const Shape& b,
                        const Pose& pose_b, const Motion& motion_b, double h, double tolerance) {
+  // Refuse a step or tolerance that is not positive: the bracket could never get short enough
+  // TODO(student): requirePositive() on h and on tolerance, naming each ("time step h", "tolerance").
   // Bound how fast any point can approach: the relative speed plus the spin of the far points
   // TODO(student): approachSpeedBound() along the relative velocity's direction gives |v_B - v_A| +
   //   |omega_A| rho_A + |omega_B| rho_B.
@@ -21,6 +23,8 @@ ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_
 
 ToiResult toiConservativeAdvancement(const Shape& a, const Pose& pose_a, const Motion& motion_a, const Shape& b,
                                      const Pose& pose_b, const Motion& motion_b, double h, double tolerance) {
+  // Refuse a step or tolerance that is not positive: the bracket could never get short enough
+  // TODO(student): requirePositive() on h and on tolerance, naming each ("time step h", "tolerance").
   // Measure the distance and the direction of the closest points at t
   // TODO(student): distance() at advance(pose, motion, t) for both; a hit when it overlaps or is <=
   //   tolerance; n = (point_a - point_b) normalised.

@@ -10,6 +10,7 @@ namespace physlab {
 
 ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_a, const Shape& b,
                        const Pose& pose_b, const Motion& motion_b, double h, double tolerance) {
+  // Refuse a step or tolerance that is not positive: the bracket could never get short enough
   requirePositive(h, "time step h");
   requirePositive(tolerance, "time-of-impact tolerance");
   ToiResult result;
@@ -49,6 +50,7 @@ ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_
 
 ToiResult toiConservativeAdvancement(const Shape& a, const Pose& pose_a, const Motion& motion_a, const Shape& b,
                                      const Pose& pose_b, const Motion& motion_b, double h, double tolerance) {
+  // Refuse a step or tolerance that is not positive: the bracket could never get short enough
   requirePositive(h, "time step h");
   requirePositive(tolerance, "time-of-impact tolerance");
   ToiResult result;
