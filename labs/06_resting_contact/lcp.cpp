@@ -12,7 +12,8 @@
 namespace physlab {
 
 LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& options) {
-  // TODO(student): validateLcp(A, b, "solveLcpPivoting"); start from f = 0, w = b, with no contact clamped (C) or free (NC).
+  // TODO(student): validateLcp(A, b, "solveLcpPivoting"), options.tolerance and pivot_tolerance >= 0 (InvalidInput);
+  // TODO(student): start from f = 0, w = b, with no contact clamped (C) or free (NC).
   // TODO(student): then take the contacts d = 0..n-1 in order, each once.
   // Sign tests on w and dw need A's scale: below pivot_tolerance * scale is round-off
   // TODO(student): scale = the largest |a_ij|.
@@ -41,7 +42,7 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
 }
 
 LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& options) {
-  // TODO(student): validateLcp(A, b, "solveLcpLemke").
+  // TODO(student): validateLcp(A, b, "solveLcpLemke"), options.tolerance and pivot_tolerance >= 0 (InvalidInput).
   // f = 0 already solves it when b >= 0
   // TODO(student): return f = 0, w = b, no pivots.
   // Build the tableau [I | -A | -e | b] of w - A f - e z0 = b; variables 0..n-1 are w, n..2n-1 f, 2n z0
@@ -67,7 +68,7 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
 }
 
 LcpSolution solveLcpPgs(const MatX& A, const VecX& b, const LcpOptions& options, std::vector<double>* residuals) {
-  // TODO(student): validateLcp(A, b, "solveLcpPgs").
+  // TODO(student): validateLcp(A, b, "solveLcpPgs"); options: tolerances >= 0, initial finite (InvalidInput).
   // Check the diagonal: each update divides by a_ii
   // TODO(student): LcpFailure when some a_ii <= options.pivot_tolerance.
   // Start from the warm start when there is one, else from zero
@@ -77,12 +78,14 @@ LcpSolution solveLcpPgs(const MatX& A, const VecX& b, const LcpOptions& options,
   // Sweep: solve row i for f_i with the others fixed, then project onto f_i >= 0
   // TODO(student): for i = 0..n-1: w_i = A.row(i) f + b_i with the newest f; f_i = max(0, f_i - w_i / a_ii).
   // TODO(student): after each sweep: residual = lcpResidual(A, b, f), append it to *residuals when given,
-  // TODO(student): stop when it is <= options.tolerance or after options.max_iterations sweeps; w = A f + b.
+  // TODO(student): stop when it is <= options.tolerance or after options.max_iterations sweeps (none when <= 0:
+  // TODO(student): residual = the start's); w = A f + b of the f returned.
   notImplemented("solveLcpPgs", "Lab 6 handout, section 5", A, b, options, residuals);
 }
 
 LcpSolution solveLcpPgsCone(const MatX& A, const VecX& b, const VecX& mu, const LcpOptions& options) {
-  // TODO(student): validateLcp; InvalidInput when n is not a multiple of 3, mu.size() != n / 3 or some mu < 0;
+  // TODO(student): validateLcp and the options, as in PGS;
+  // TODO(student): InvalidInput when n is not a multiple of 3, mu.size() != n / 3 or some mu < 0;
   // TODO(student): LcpFailure on a diagonal entry <= pivot_tolerance, as in PGS.
   // Start from the warm start when there is one, inside the cones, else from zero
   // TODO(student): f = options.initial (normal entries raised to >= 0) when it has n entries, else 0; then
@@ -97,7 +100,8 @@ LcpSolution solveLcpPgsCone(const MatX& A, const VecX& b, const VecX& mu, const 
   // Project the tangential force onto the disc |(f_t, f_o)| <= mu f_n
   // TODO(student): when longer than mu f_n, scale (f_t, f_o) down to that length.
   // Measure the change as a change of w (|df_i| a_ii), comparable across contacts
-  // TODO(student): stop when the sweep's largest |df_i| a_ii <= options.tolerance (that is the residual) or after max_iterations.
+  // TODO(student): stop when the sweep's largest |df_i| a_ii <= options.tolerance (that is the residual) or after max_iterations
+  // TODO(student): (residual infinity when no sweep ran).
   notImplemented("solveLcpPgsCone", "Lab 6 handout, section 6", A, b, mu, options);
 }
 

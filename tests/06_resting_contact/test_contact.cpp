@@ -250,3 +250,56 @@ TEST_CASE("friction pyramid: sizes that do not fit, k < 3 and negative mu are re
   CHECK_THROWS_AS(frictionPyramid(A, b, VecX::Constant(3, 0.5), k), InvalidInput);
   CHECK_THROWS_AS(frictionPyramid(A, b, Vec3(0.5, -0.1, 0.0).head<2>(), k), InvalidInput);
 }
+
+TEST_CASE("friction pyramid: two spheres sliding apart, each contact's directions and gamma kept together", "[lab06][pts=1]") {
+  // Two spheres (m_s, radius r) on the ground, sliding at u_s: sphere 0 along d_1, sphere 1 along
+  // d_0, sphere 1 faster by 1 m/s. Rows: the 2 normals, then sphere 0's k directions, then sphere
+  // 1's. By hand, as for one sphere: lambda_s = m_s g h, friction mu_s lambda_s on the direction
+  // opposite the sliding (d_3 = -d_1 for sphere 0, d_2 = -d_0 for sphere 1), gamma_s =
+  // u_s - 3.5 mu_s g h. (Directions numbered l m + i instead of i k + l would hand each sphere's
+  // friction to the other's gamma, whose speed differs by 1 - 3.5 g h |mu_1 - mu_0| >= 0.75.)
+  const double r = 0.1, g = 9.81, h = 0.01;
+  const int k = 4;
+  const std::vector<Vec3> d = tangentDirections(Vec3::UnitZ(), k);
+  std::vector<ContactBody> bodies;
+  double m[2], mu[2], u[2];
+  for (int s = 0; s < 2; ++s) {
+    m[s] = uniform(0.5, 2.0);
+    mu[s] = uniform(0.1, 0.8);
+    u[s] = s == 0 ? uniform(1.0, 2.0) : u[0] + 1.0;
+    ContactBody sphere;
+    sphere.x = Vec3(2.0 * s, 0.0, r);
+    sphere.inv_mass = 1.0 / m[s];
+    sphere.I_inv_world = Mat3::Identity() / (0.4 * m[s] * r * r);
+    sphere.v = u[s] * d[static_cast<std::size_t>(1 - s)] - g * h * Vec3::UnitZ();
+    bodies.push_back(sphere);
+  }
+  bodies.push_back(fixedBody(Vec3::Zero()));
+  std::vector<ContactRow> rows;
+  for (int s = 0; s < 2; ++s) rows.push_back({s, 2, Vec3(2.0 * s, 0.0, 0.0), Vec3::UnitZ()});
+  for (int s = 0; s < 2; ++s) {
+    for (const Vec3& direction : d) rows.push_back({s, 2, Vec3(2.0 * s, 0.0, 0.0), direction});
+  }
+  const MatX A = jacobianProduct(bodies, rows);
+  VecX b(static_cast<Index>(rows.size()));
+  for (std::size_t i = 0; i < rows.size(); ++i) b(static_cast<Index>(i)) = rows[i].d.dot(bodies[static_cast<std::size_t>(rows[i].a)].v);
+  const LcpProblem lcp = frictionPyramid(A, b, Vec3(mu[0], mu[1], 0.0).head<2>(), k);
+  const Index size = 2 + 2 * k + 2;
+  REQUIRE(lcp.A.rows() == size);
+  REQUIRE(lcp.A.cols() == size);
+  REQUIRE(lcp.b.size() == size);
+  // Unknowns (lambda_0, lambda_1, beta_0 (k), beta_1 (k), gamma_0, gamma_1)
+  VecX z = VecX::Zero(size);
+  for (Index s = 0; s < 2; ++s) {
+    z(s) = m[s] * g * h;
+    z(2 + s * k + (3 - s)) = mu[s] * z(s);  // direction 3 - s = -d_(1 - s)
+    z(2 + 2 * k + s) = u[s] - 3.5 * mu[s] * g * h;
+  }
+  // Exact up to round-off in products of order 1
+  CHECK(lcpResidual(lcp.A, lcp.b, z) <= 1e-12);
+  // Each gamma limits its own contact's friction only: sphere 1's friction moved onto sphere 0's
+  // directions is no solution (sphere 0 would then get two frictions and sphere 1 none)
+  VecX wrong = z;
+  std::swap(wrong(2 + k + 2), wrong(2 + 2));
+  CHECK(lcpResidual(lcp.A, lcp.b, wrong) > 1e-4);
+}

@@ -256,3 +256,51 @@ TEST_CASE("pivoting and lemke: a heavy box on a light one is held exactly, where
   CHECK(error_pgs >= 0.5);
   CHECK(error_pgs > 1e6 * std::max({error_pivoting, error_lemke, 1e-16}));
 }
+
+TEST_CASE("pivoting: the same LCP in other units (A and b times 1e-14 or 1e14) has the same solution", "[lab06][pts=1]") {
+  // w = s (A f + b): scaling A and b together scales w and leaves f unchanged, for any s > 0.
+  // The sign test on w_d is relative to A's scale (pivot_tolerance times the largest |a_ij|): an
+  // absolute pivot_tolerance would take every w of the problem scaled by 1e-14 for zero.
+  for (const double s : {1e-14, 1e14}) {
+    for (int trial = 0; trial < 10; ++trial) {
+      const Index n = static_cast<Index>(uniform(3, 15));
+      const double cond = std::exp(uniform(0.0, std::log(100.0)));
+      const PlantedLcp p = plantSolution(randomSpd(n, cond));
+      const LcpSolution r = solveLcpPivoting(s * p.A, s * p.b);
+      INFO("scale " << s << ", n " << n << ", cond " << cond << ", active " << p.active << ", pivots " << r.iterations);
+      // As in the planted test: eps * cond * |f*| per pivot with margin, f* and w* of order 1
+      const double tol = 1e-13 * cond * static_cast<double>(n) * std::max(1.0, p.f.cwiseAbs().maxCoeff());
+      CHECK((r.f - p.f).cwiseAbs().maxCoeff() <= tol);
+      CHECK((r.w - s * p.w).cwiseAbs().maxCoeff() <= s * tol * p.A.cwiseAbs().maxCoeff());
+    }
+  }
+}
+
+TEST_CASE("pivoting and lemke: iterations count every pivot, counted by hand", "[lab06][pts=1]") {
+  // 1 x 1, b < 0. Pivoting: one step of f_0, which d itself blocks (1 pivot). Lemke: z0 enters
+  // in row 0, then f_0 enters and z0 leaves (2 pivots).
+  const double a = uniform(0.1, 10.0), b1 = -uniform(0.1, 10.0);
+  CHECK(solveLcpPivoting(MatX::Constant(1, 1, a), VecX::Constant(1, b1)).iterations == 1);
+  CHECK(solveLcpLemke(MatX::Constant(1, 1, a), VecX::Constant(1, b1)).iterations == 2);
+  // A = [[1, c], [c, 1]], b = (-1, -2), c = 0.9. Pivoting: (1) contact 0 clamps at f = (1, 0),
+  // w_1 = -2 + c; (2) driving f_1 moves f_0 by -c, and f_0 reaches 0 first (at f_1 = 1 / c,
+  // before w_1 does at (2 - c) / (1 - c^2)): contact 0 leaves for the free set; (3) f_1 alone
+  // then rises to 2, where w_1 = 0, with w_0 = 2c - 1 > 0 never blocking. f = (0, 2).
+  // Lemke: z0 enters at row 1 (b_1 most negative): z0 = 2, w_0 = 1; f_1 enters, ratios 1/(1 - c)
+  // = 10 for w_0 and 2 for z0: z0 leaves (2 pivots), f = (0, 2).
+  const double c = 0.9;
+  MatX A(2, 2);
+  A << 1.0, c, c, 1.0;
+  const VecX b = (VecX(2) << -1.0, -2.0).finished();
+  const LcpSolution piv = solveLcpPivoting(A, b), lem = solveLcpLemke(A, b);
+  CHECK(piv.iterations == 3);
+  CHECK(lem.iterations == 2);
+  // A few operations on numbers of order 1: a few ulps
+  const VecX f = (VecX(2) << 0.0, 2.0).finished();
+  CHECK((piv.f - f).cwiseAbs().maxCoeff() <= 4e-15);
+  CHECK((lem.f - f).cwiseAbs().maxCoeff() <= 4e-15);
+  CHECK(piv.w(0) == Approx(2.0 * c - 1.0).epsilon(1e-14));
+  // b >= 0: f = 0 solves it with no pivot at all
+  CHECK(solveLcpPivoting(A, -b).iterations == 0);
+  CHECK(solveLcpLemke(A, -b).iterations == 0);
+}

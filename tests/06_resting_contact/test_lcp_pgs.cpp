@@ -2,6 +2,7 @@
 // well-conditioned problems, the QP objective it decreases, its residual history, and a contact
 // on a slope that sticks or slides.
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "lcp_support.hpp"
@@ -351,4 +352,71 @@ TEST_CASE("pgs cone: one sweep from a warm start, computed here: clamp and disc-
   options.initial = VecX();
   CHECK(cold.f == solveLcpPgsCone(A, b, mu, options).f);
   CHECK((cold.f - f).cwiseAbs().maxCoeff() > 1e-6);
+}
+
+TEST_CASE("pgs: the result contract: no sweep at max_iterations 0, w of the returned f, tolerance 0 stops on an exact solution", "[lab06][pts=1]") {
+  const Index n = static_cast<Index>(uniform(4, 12));
+  const PlantedLcp p = wellConditioned(n, uniform(1.0, 10.0));
+  LcpOptions options;
+  options.initial = VecX(n);
+  for (Index i = 0; i < n; ++i) options.initial(i) = uniform(-1.0, 1.0);
+  const VecX start = options.initial.cwiseMax(0.0);  // negative entries count as 0
+  // No sweep: the start comes back untouched, measured (residual of the start, w = A f + b)
+  options.max_iterations = 0;
+  std::vector<double> history;
+  const LcpSolution none = solveLcpPgs(p.A, p.b, options, &history);
+  CHECK(none.iterations == 0);
+  CHECK(history.empty());
+  CHECK(none.f == start);  // copied, no arithmetic
+  REQUIRE(none.w.size() == n);
+  // One matrix-vector product on O(1) numbers in another order: round-off
+  CHECK((none.w - (p.A * start + p.b)).cwiseAbs().maxCoeff() <= 1e-12 * (1.0 + p.A.cwiseAbs().maxCoeff()));
+  CHECK(none.residual == Approx(complementarity(p.A, p.b, start)).epsilon(1e-9).margin(1e-15));
+  REQUIRE(none.residual > 0.0);  // random start: not a solution, so a residual of 0 is wrong
+  // A few sweeps without converging: w belongs to the returned f, not to the f a sweep ago
+  options.max_iterations = static_cast<int>(uniform(1, 4));
+  options.tolerance = 0.0;
+  const LcpSolution few = solveLcpPgs(p.A, p.b, options);
+  INFO("sweeps " << few.iterations << ", residual " << few.residual);
+  REQUIRE(few.w.size() == n);
+  CHECK((few.w - (p.A * few.f + p.b)).cwiseAbs().maxCoeff() <= 1e-12 * (1.0 + p.A.cwiseAbs().maxCoeff()));
+  // b >= 0 with a zero entry: every update is max(0, 0 - b_i / a_ii) = 0 exactly, so the first
+  // sweep leaves f = 0 with residual max |min(0, b_i)| = 0 exactly, and tolerance 0 stops there
+  VecX b(n);
+  for (Index i = 0; i < n; ++i) b(i) = i == 1 ? 0.0 : uniform(0.0, 2.0);
+  options.initial = VecX();
+  options.max_iterations = 50;
+  const LcpSolution exact = solveLcpPgs(p.A, b, options);
+  CHECK(exact.residual == 0.0);
+  CHECK(exact.iterations == 1);
+}
+
+TEST_CASE("pgs cone: with max_iterations 0 the start comes back projected, residual infinity, w = A f + b", "[lab06][pts=1]") {
+  const Index k = static_cast<Index>(uniform(1, 4));
+  const MatX A = coneMatrix(k);
+  VecX b(3 * k), mu(k), start(3 * k);
+  for (Index i = 0; i < 3 * k; ++i) {
+    b(i) = uniform(-2.0, 2.0);
+    start(i) = uniform(-1.0, 1.0);
+  }
+  for (Index c = 0; c < k; ++c) mu(c) = uniform(0.2, 1.0);
+  start(0) = uniform(0.5, 2.0);  // contact 0 pushes: its disc has room
+  // The documented start, computed here: f_n >= 0, each f_T scaled onto |f_T| <= mu f_n
+  VecX f = start;
+  for (Index c = 0; c < k; ++c) {
+    f(3 * c) = std::max(0.0, f(3 * c));
+    const double radius = mu(c) * f(3 * c), length = f.segment<2>(3 * c + 1).norm();
+    if (length > radius) f.segment<2>(3 * c + 1) *= length > 0.0 ? radius / length : 0.0;
+  }
+  LcpOptions options;
+  options.initial = start;
+  options.max_iterations = 0;
+  const LcpSolution s = solveLcpPgsCone(A, b, mu, options);
+  CHECK(s.iterations == 0);
+  // "infinity when no sweep ran": no change was measured, so nothing says it converged
+  CHECK(s.residual == std::numeric_limits<double>::infinity());
+  // One scaling of a 2-vector: round-off
+  CHECK((s.f - f).cwiseAbs().maxCoeff() <= 1e-15 * (1.0 + f.cwiseAbs().maxCoeff()));
+  REQUIRE(s.w.size() == 3 * k);
+  CHECK((s.w - (A * s.f + b)).cwiseAbs().maxCoeff() <= 1e-12);  // w = A f + b, round-off of O(1) sums
 }

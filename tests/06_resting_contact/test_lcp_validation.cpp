@@ -2,6 +2,7 @@
 // naming the problem (validateLcp is the framework's, but calling it is the student's job).
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "lcp_support.hpp"
 
@@ -79,4 +80,34 @@ TEST_CASE("pgs cone: refuses bad input, a size not a multiple of 3, a wrong mu s
   mu(k - 1) = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(solveLcpPgsCone(A, b, mu), InvalidInput);
   CHECK_NOTHROW(solveLcpPgsCone(A, b, VecX::Zero(k)));
+}
+
+TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and allows zero ones", "[lab06][pts=1]") {
+  const Index n = 3 * static_cast<Index>(uniform(1, 4));
+  const MatX A = randomSpd(n, 10.0);
+  VecX b(n);
+  for (Index i = 0; i < n; ++i) b(i) = uniform(-1.0, 1.0);
+  const VecX mu = VecX::Constant(n / 3, 0.5);
+  // The same options for every solver: LcpOptions' contract, "both tolerances must be >= 0"
+  auto refusedByAll = [&](const LcpOptions& options, const std::string& words) {
+    CHECK_THROWS_AS(solveLcpPivoting(A, b, options), InvalidInput);
+    CHECK_THROWS_WITH(solveLcpPivoting(A, b, options), Contains(words));
+    CHECK_THROWS_AS(solveLcpLemke(A, b, options), InvalidInput);
+    CHECK_THROWS_WITH(solveLcpLemke(A, b, options), Contains(words));
+    CHECK_THROWS_AS(solveLcpPgs(A, b, options), InvalidInput);
+    CHECK_THROWS_WITH(solveLcpPgs(A, b, options), Contains(words));
+    CHECK_THROWS_AS(solveLcpPgsCone(A, b, mu, options), InvalidInput);
+    CHECK_THROWS_WITH(solveLcpPgsCone(A, b, mu, options), Contains(words));
+  };
+  LcpOptions options;
+  options.tolerance = -uniform(1e-12, 1.0);
+  refusedByAll(options, "tolerance");
+  options = LcpOptions{};
+  options.pivot_tolerance = -uniform(1e-12, 1.0);
+  refusedByAll(options, "tolerance");
+  // Zero tolerances are allowed
+  options = LcpOptions{};
+  options.tolerance = 0.0;
+  options.pivot_tolerance = 0.0;
+  CHECK_NOTHROW(solveLcpPgs(A, b, options));
 }
