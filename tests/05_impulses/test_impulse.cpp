@@ -38,6 +38,15 @@ TEST_CASE("rigid impulse: j equals the lecture's closed form", "[lab05][pts=2]")
   // The same formula evaluated in another order: round-off only.
   CHECK(impulseMagnitude(s.A, s.B, s.p, s.n, epsilon) == Approx(j).epsilon(1e-10));
   CHECK(inverseEffectiveMass(s.A, s.B, s.p, s.n) == Approx(denominator).epsilon(1e-12));
+  // Separating points (every velocity reversed): the same formula, now negative; world.hpp leaves
+  // the decision to apply it to the caller, so j is not clamped to zero
+  RandomPair leaving = s;
+  leaving.A.v = -s.A.v;
+  leaving.A.omega = -s.A.omega;
+  leaving.B.v = -s.B.v;
+  leaving.B.omega = -s.B.omega;
+  REQUIRE(vRel(leaving) > 0.0);
+  CHECK(impulseMagnitude(leaving.A, leaving.B, leaving.p, leaving.n, epsilon) == Approx(-j).epsilon(1e-10));  // round-off only
 }
 
 TEST_CASE("rigid impulse: linear and angular momentum of the pair are conserved", "[lab05][pts=2]") {

@@ -507,3 +507,206 @@ TEST_CASE("simultaneous impulses: the first sweeps on a box are Jacobi's, with s
     checkSameSweeps(s, oracle);
   }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Sweep counts and stopping rules, worked out by hand on scenes where one sweep is exact, and the
+// shares on a scene where the ground and a box carry several points.
+
+namespace {
+
+// A solid sphere (mass m, radius r, isotropic inertia 2/5 m r^2) touching the fixed ground at its
+// lowest point, moving down and sliding: K along any direction at that point is 1/m along n and
+// 7/(2m) in the tangent plane, and the normal and tangential parts do not couple.
+struct SphereOnGround {
+  std::vector<ContactBody> bodies;  // sphere, ground
+  Contact contact;
+  double m = 1.0, r = 0.1;
+};
+
+SphereOnGround sphereOnGround(double epsilon, double mu) {
+  SphereOnGround s;
+  s.m = uniform(0.5, 5.0);
+  s.r = uniform(0.05, 0.5);
+  ContactBody sphere, ground;
+  sphere.x = Vec3(uniform(-1, 1), uniform(-1, 1), s.r);
+  sphere.v = Vec3(uniform(-2, 2), uniform(-2, 2), uniform(-3, -1));
+  sphere.omega = randomVec3(2.0);
+  sphere.inv_mass = 1.0 / s.m;
+  sphere.I_inv_world = Mat3::Identity() / (0.4 * s.m * s.r * s.r);
+  s.bodies = {sphere, ground};
+  Contact& c = s.contact;
+  c.a = 0;
+  c.b = 1;
+  c.p = Vec3(sphere.x.x(), sphere.x.y(), 0.0);
+  c.n = Vec3::UnitZ();
+  c.epsilon = epsilon;
+  c.mu = mu;
+  c.v_rel_minus = sphere.v.z();
+  c.kind = ContactKind::Colliding;
+  return s;
+}
+
+// The sliding velocity of the sphere's lowest point, v + omega x (p - x) in the ground's plane.
+Vec3 sphereSlip(const SphereOnGround& s) {
+  const ContactBody& sphere = s.bodies[0];
+  const Vec3 v = sphere.v + sphere.omega.cross(s.contact.p - sphere.x);
+  return Vec3(v.x(), v.y(), 0.0);
+}
+
+// Multiplies both bodies' masses and inertias by `factor` (velocities kept).
+void makeHeavier(RandomPair& s, double factor) {
+  s.A.inv_mass /= factor;
+  s.A.I_inv_world /= factor;
+  s.B.inv_mass /= factor;
+  s.B.I_inv_world /= factor;
+  s.m_a *= factor;
+  s.m_b *= factor;
+  s.I_a *= factor;
+  s.I_b *= factor;
+}
+
+}  // namespace
+
+TEST_CASE("sequential and simultaneous impulses: one frictionless point takes one sweep and one quiet sweep", "[lab05][pts=1]") {
+  const RandomPair s = approachingPair();  // |v_rel| >= 0.3 m/s: above the restitution threshold
+  const double epsilon = uniform(0.0, 1.0);
+  INFO("v_rel " << vRel(s) << ", epsilon " << epsilon);
+  // Sequential: the first sweep gives the point its full impulse, so v_rel = -epsilon v_rel- >= 0;
+  // the second finds nothing approaching and stops. Returned: 2 sweeps.
+  std::vector<ContactBody> bodies = {s.A, s.B};
+  std::vector<Contact> contacts = {oneContact(s, epsilon, 0.0)};
+  Settings settings;
+  CHECK(solveSequential(bodies, contacts, settings) == 2);
+  // Simultaneous, cold: one point has a share of 1, so the first correction reaches the target
+  // exactly; the second sweep's correction is round-off, below the tolerance. 2 sweeps.
+  bodies = {s.A, s.B};
+  contacts = {oneContact(s, epsilon, 0.0)};
+  settings.method = ResponseMethod::Simultaneous;
+  CHECK(solveSimultaneous(bodies, contacts, settings) == 2);
+  // Warm-started from the answer j = -(1 + epsilon) v_rel / K: the first sweep already finds
+  // nothing to correct. 1 sweep.
+  bodies = {s.A, s.B};
+  contacts = {oneContact(s, epsilon, 0.0)};
+  contacts[0].j = -(1.0 + epsilon) * vRel(s) / oracleK(s.A, s.B, s.p, s.n);
+  CHECK(solveSimultaneous(bodies, contacts, settings) == 1);
+}
+
+TEST_CASE("simultaneous impulses: the stopping rule measures velocity changes, friction included", "[lab05][pts=1]") {
+  // Heavy bodies (x1000): a correction of velocity dv is an impulse of dv / K, about 1000 dv.
+  // With the tolerance at twice the first correction's velocity change, the first sweep (exact,
+  // one point) is already within it: the solver stops after 1 sweep.
+  RandomPair heavy = approachingPair();
+  makeHeavier(heavy, 1e3);
+  const double epsilon = uniform(0.0, 1.0);
+  std::vector<ContactBody> bodies = {heavy.A, heavy.B};
+  std::vector<Contact> contacts = {oneContact(heavy, epsilon, 0.0)};
+  Settings settings;
+  settings.method = ResponseMethod::Simultaneous;
+  settings.tolerance = 2.0 * (1.0 + epsilon) * std::abs(vRel(heavy));
+  INFO("K " << oracleK(heavy.A, heavy.B, heavy.p, heavy.n) << " 1/kg, tolerance " << settings.tolerance << " m/s");
+  CHECK(solveSimultaneous(bodies, contacts, settings) == 1);
+
+  // A sphere sliding on the ground, warm-started with exactly its normal impulse and no friction:
+  // the first sweep's normal correction is zero, its friction correction stops the slip (mu = 10
+  // keeps it inside the cone). That is a velocity change of |v_t|, so a second sweep is needed,
+  // which finds nothing left: 2 sweeps.
+  SphereOnGround s = sphereOnGround(epsilon, 10.0);
+  const double target = -epsilon * s.contact.v_rel_minus;  // v_rel- <= -1 m/s: above the threshold
+  s.contact.j = s.m * (target - s.contact.v_rel_minus);    // K along n is 1/m: no coupling
+  const Vec3 slip = sphereSlip(s);
+  INFO("slip " << slip.transpose() << " m/s, j " << s.contact.j << " N s");
+  std::vector<Contact> sphere_contacts = {s.contact};
+  settings = Settings{};
+  settings.method = ResponseMethod::Simultaneous;
+  CHECK(solveSimultaneous(s.bodies, sphere_contacts, settings) == 2);
+  // The normal velocity reached the target and the slip stopped; the friction impulse that stops a
+  // slip v_t at the lowest point of a sphere is 2 m |v_t| / 7. Round-off of ~10 m/s, ~10 N s.
+  CHECK(s.bodies[0].v.z() == Approx(target).margin(1e-12 * (1.0 + std::abs(target))));
+  CHECK(sphereSlip(s).norm() <= 1e-12 * (1.0 + slip.norm()));
+  CHECK(sphere_contacts[0].j_t.norm() == Approx(2.0 * s.m * slip.norm() / 7.0).epsilon(1e-10));
+}
+
+TEST_CASE("sequential impulses: on a heavy box the sweeps stop when friction changes no sliding speed by more than the tolerance", "[lab05][pts=1]") {
+  // The box is 1000 times heavier: friction's impulses (N s) are ~1000 times the sliding-speed
+  // changes (m/s) they make, and only the latter is compared with the tolerance.
+  BoxOnGround s = boxOnGround(uniform(0.0, 1.0), uniform(0.1, 1.0), 5e-4);  // flat: four points
+  REQUIRE(s.contacts.size() == 4);
+  s.m *= 1e3;
+  s.I *= 1e3;
+  s.bodies[0].inv_mass /= 1e3;
+  s.bodies[0].I_inv_world /= 1e3;
+  BoxOnGround oracle = s;
+  Settings settings;
+  settings.iterations = 1000;
+  settings.tolerance = std::pow(10.0, uniform(-3.0, -2.0));  // coarse: the stopping rule decides
+  const int expected = oracleSequential(oracle.bodies, oracle.contacts, settings);
+  INFO(expected << " sweeps expected, tolerance " << settings.tolerance << " m/s");
+  CHECK(solveSequential(s.bodies, s.contacts, settings) == expected);
+  checkSameSweeps(s, oracle);
+}
+
+TEST_CASE("simultaneous impulses: the share counts each moving body's points, as A or as B, and none on the fixed ground", "[lab05][pts=1]") {
+  // Bodies: 0 the fixed ground, 1 a flat box on it (A, four corners), 2 a sphere on the box (A,
+  // with the box as B), 3 a sphere on the ground elsewhere (A). The box carries 5 points, each
+  // sphere 1, the ground none that count (a fixed body takes no correction). Shares: 1/5 at the
+  // box's corners and under the sphere on it, 1 under the lone sphere.
+  const Vec3 half(uniform(0.1, 0.5), uniform(0.1, 0.5), uniform(0.1, 0.5));
+  const double m_box = uniform(0.5, 5.0), m_top = uniform(0.5, 5.0), m_lone = uniform(0.5, 5.0), r = 0.1;
+  std::vector<ContactBody> bodies(4);
+  ContactBody &box = bodies[1], &top = bodies[2], &lone = bodies[3];
+  box.x = Vec3(0.0, 0.0, half.z());
+  box.v = Vec3(uniform(-1, 1), uniform(-1, 1), uniform(-3, -1));
+  box.omega = randomVec3(0.3);  // corners move at most ~0.3 m/s from the rotation: all approach
+  box.inv_mass = 1.0 / m_box;
+  box.I_inv_world = Vec3(half.y() * half.y() + half.z() * half.z(), half.x() * half.x() + half.z() * half.z(),
+                         half.x() * half.x() + half.y() * half.y()).asDiagonal().inverse();
+  box.I_inv_world *= 3.0 / m_box;
+  top.x = Vec3(uniform(-0.5, 0.5) * half.x(), uniform(-0.5, 0.5) * half.y(), 2.0 * half.z() + r);
+  top.v = box.v + Vec3(0.0, 0.0, uniform(-2.0, -1.0));  // faster down than the box under it
+  top.inv_mass = 1.0 / m_top;
+  top.I_inv_world = Mat3::Identity() / (0.4 * m_top * r * r);
+  lone.x = Vec3(3.0, 0.0, r);
+  lone.v = Vec3(uniform(-1, 1), uniform(-1, 1), uniform(-3, -1));
+  lone.inv_mass = 1.0 / m_lone;
+  lone.I_inv_world = Mat3::Identity() / (0.4 * m_lone * r * r);
+  std::vector<Contact> contacts;
+  auto add = [&](int a, int b, const Vec3& p) {
+    Contact c;
+    c.a = a;
+    c.b = b;
+    c.p = p;
+    c.n = Vec3::UnitZ();
+    c.epsilon = uniform(0.0, 1.0);
+    c.v_rel_minus = c.n.dot(oracleRelativeVelocity(bodies[a], bodies[b], p));
+    c.kind = ContactKind::Colliding;
+    contacts.push_back(c);
+  };
+  for (const double sx : {-1.0, 1.0})
+    for (const double sy : {-1.0, 1.0}) add(1, 0, Vec3(sx * half.x(), sy * half.y(), 0.0));
+  add(2, 1, Vec3(top.x.x(), top.x.y(), 2.0 * half.z()));
+  add(3, 0, Vec3(lone.x.x(), lone.x.y(), 0.0));
+  // One sweep by hand: every correction from the starting velocities, share (target - v_rel) / K
+  const double shares[] = {0.2, 0.2, 0.2, 0.2, 0.2, 1.0};
+  std::vector<double> expected;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    REQUIRE(c.v_rel_minus < -Settings{}.restitution_threshold);  // all approach: target -epsilon v_rel-
+    const double K = oracleK(bodies[c.a], bodies[c.b], c.p, c.n);
+    expected.push_back(std::max(0.0, shares[k] * (-c.epsilon * c.v_rel_minus - c.v_rel_minus) / K));
+  }
+  const ContactBody lone0 = lone;
+  Settings settings;
+  settings.method = ResponseMethod::Simultaneous;
+  settings.iterations = 1;
+  CHECK(solveSimultaneous(bodies, contacts, settings) == 1);
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    INFO("point " << k << " (bodies " << contacts[k].a << ", " << contacts[k].b << "): j " << contacts[k].j << ", expected "
+                  << expected[k]);
+    // The same formula evaluated in another order: round-off relative to the impulse (~10 N s).
+    CHECK(contacts[k].j == Approx(expected[k]).epsilon(1e-10));
+  }
+  // The lone sphere alone on its point got its whole correction: it leaves at -epsilon v_rel-
+  // (a sphere touching at its lowest point: K = 1/m, no rotation), round-off of ~10 m/s.
+  CHECK(lone.v.z() == Approx(-contacts[5].epsilon * lone0.v.z()).margin(1e-12 * (1.0 + std::abs(lone0.v.z()))));
+  CHECK(bodies[0].v == Vec3::Zero());  // the ground stays put (exactly)
+}

@@ -202,8 +202,8 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
 /// Simultaneous impulses (Jacobi): each sweep computes every point's correction from the same
 /// velocities, aiming at \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$ (v_rel_minus of the contact), with
 /// accumulated impulses clamped to \f$j \ge 0\f$ and \f$|j_t| \le \mu j\f$ (a point's friction sees its
-/// own normal correction), then applies them all,
-/// each scaled by 1/(the largest number of contacts on either of its bodies) so that a body
+/// own normal correction), then applies them all, each scaled by 1/(the largest number of contacts
+/// on either of its moving bodies; a fixed body takes no correction and counts none) so that a body
 /// resting on several points does not receive several full corrections. Contacts that arrive with
 /// j, j_t from the last step (warm starting) apply them first. Repeats until no correction exceeds
 /// settings.tolerance (as a velocity change) or settings.iterations sweeps. Returns the sweeps.
