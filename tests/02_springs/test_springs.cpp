@@ -303,4 +303,12 @@ TEST_CASE("ground: the penalty force pushes up in proportion to depth", "[lab02]
   const Vec3 f = groundForce(ground, below, v);
   CHECK(f.head<2>().norm() == 0.0);  // frictionless: normal only
   CHECK(f.z() == Approx(ground.stiffness * depth - ground.damping * v.z()).epsilon(1e-12));
+  // The damper acts while in contact whichever way the particle moves: sinking and rising.
+  for (const double vz : {-std::abs(v.z()) - 0.1, std::abs(v.z()) + 0.1}) {
+    const Vec3 w(v.x(), v.y(), vz);
+    // Round-off of the two terms, which may nearly cancel.
+    const double scale = ground.stiffness * depth + ground.damping * std::abs(vz);
+    CHECK(groundForce(ground, below, w).z() ==
+          Approx(ground.stiffness * depth - ground.damping * vz).epsilon(1e-12).margin(1e-14 * scale));
+  }
 }

@@ -233,7 +233,7 @@ struct ImplicitSettings {
 /// What one implicit step did.
 struct ImplicitStats {
   int iterations = 0;   ///< CG iterations (0 for LDLT)
-  double residual = 0;  ///< relative residual \f$|A\Delta v - b|/|b|\f$ of the solve
+  double residual = 0;  ///< relative residual \f$|A\Delta v - b|/|b|\f$ of the solve (0 when b = 0)
 };
 
 /// Display name of a linear solver ("CG", "LDLT").
