@@ -57,9 +57,10 @@ inline void requireNonNegative(double value, std::string_view what) {
   }
 }
 
+/// Internals of the checks below.
 namespace detail {
-// The search half of firstNonFinite(), out of line and cold, so that the check itself is a few
-// instructions the compiler inlines into every caller.
+/// The search half of firstNonFinite(), out of line and cold, so that the check itself is a few
+/// instructions the compiler inlines into every caller.
 template <class Derived>
 [[gnu::cold, gnu::noinline]] Index searchNonFinite(const Eigen::DenseBase<Derived>& values) {
   for (Index j = 0; j < values.cols(); ++j) {
@@ -70,7 +71,7 @@ template <class Derived>
   return -1;
 }
 
-// requireFinite()'s message, built out of line for the same reason.
+/// requireFinite()'s message, built out of line for the same reason.
 [[noreturn, gnu::cold, gnu::noinline]] inline void throwNonFinite(std::string_view what, Index row, Index col) {
   throw InvalidInput(std::string(what) + " has a non-finite entry at (" + std::to_string(row) + ", " +
                      std::to_string(col) + ")");
