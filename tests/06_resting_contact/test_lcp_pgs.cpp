@@ -32,6 +32,13 @@ MatX coneMatrix(Index k) {
   return J * m_inv.asDiagonal() * J.transpose() + MatX::Identity(3 * k, 3 * k) * 0.1;
 }
 
+// A warm start of n entries in [-1, 1]: some negative, which PGS must count as 0.
+VecX randomWarmStart(Index n) {
+  VecX start(n);
+  for (Index i = 0; i < n; ++i) start(i) = uniform(-1.0, 1.0);
+  return start;
+}
+
 }  // namespace
 
 TEST_CASE("pgs: one-step oracles, b >= 0 gives f = 0 exactly and 1 x 1 gives f = -b / a exactly", "[lab06][pts=1]") {
@@ -73,8 +80,7 @@ TEST_CASE("pgs: a warm start is where the sweeps begin, and at the solution one 
   const PlantedLcp p = wellConditioned(n, uniform(1.0, 10.0));
   // One sweep from a random start, with negative entries counting as 0, computed here.
   LcpOptions options;
-  options.initial = VecX(n);
-  for (Index i = 0; i < n; ++i) options.initial(i) = uniform(-1.0, 1.0);
+  options.initial = randomWarmStart(n);
   options.max_iterations = 1;
   VecX f = options.initial.cwiseMax(0.0);
   for (Index i = 0; i < n; ++i) f(i) = std::max(0.0, f(i) - (p.A.row(i).dot(f) + p.b(i)) / p.A(i, i));
@@ -358,8 +364,7 @@ TEST_CASE("pgs: the result contract: no sweep at max_iterations 0, w of the retu
   const Index n = static_cast<Index>(uniform(4, 12));
   const PlantedLcp p = wellConditioned(n, uniform(1.0, 10.0));
   LcpOptions options;
-  options.initial = VecX(n);
-  for (Index i = 0; i < n; ++i) options.initial(i) = uniform(-1.0, 1.0);
+  options.initial = randomWarmStart(n);
   const VecX start = options.initial.cwiseMax(0.0);  // negative entries count as 0
   // No sweep: the start comes back untouched, measured (residual of the start, w = A f + b)
   options.max_iterations = 0;
