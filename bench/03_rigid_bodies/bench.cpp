@@ -88,8 +88,8 @@ template <class State>
 struct AnchorRk4 {
   State k1 = State::Zero(13), k2 = State::Zero(13), k3 = State::Zero(13), k4 = State::Zero(13);
   State stage = State::Zero(13);
-  double mass;
-  Mat3 I_inv;
+  double mass = 1.0;  // the benchmark's bodies
+  Mat3 I_inv = kInertia.inverse();
 
   void derivative(const State& X, State& d) const {
     const Quat q(X[3], X[4], X[5], X[6]);
@@ -136,10 +136,8 @@ PairedCosts anchorsAndOursPerBodyStep(int count, int sweeps, double& difference)
     states.push_back(ours.back());
   }
   dynamic = ours;
-  AnchorRk4<State13> fixed_anchor{};
-  AnchorRk4<VecX> dynamic_anchor{};
-  fixed_anchor.mass = dynamic_anchor.mass = 1.0;
-  fixed_anchor.I_inv = dynamic_anchor.I_inv = kInertia.inverse();
+  AnchorRk4<State13> fixed_anchor;
+  AnchorRk4<VecX> dynamic_anchor;
   Integrator integrator(Method::RK4);
   const auto fixed_sweeps = [&] {
     for (int s = 0; s < sweeps; ++s) {
