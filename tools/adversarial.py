@@ -6,7 +6,8 @@ stubs, so it has earned nothing. Its header says how it enters the submission:
     // adversarial: <what it tries>
     // mode: append | replace     (after the stub of FILE, or instead of it)
     // file: labs/NN_name/x.cpp   (default labs/01_particles/diagnostics.cpp)
-    // symlink: PATH -> TARGET    (a link in the submission instead of a file)
+    // symlink: PATH -> TARGET    (a link in the submission instead of a file or folder)
+    // relative                   (make those links relative to where they sit)
     // grade: <extra ./physlab grade options>
     // secret: <text that must appear in no output>
     // quick                      (part of the set CI runs)
@@ -100,8 +101,12 @@ def run_case(path: Path, build: Path, solution_lines: set, hidden_lines: set) ->
     submission, out = work / "submission", work / "out"
     shutil.copytree(ROOT / "labs", submission / "labs")
     for link, target in meta["symlinks"]:
-        (submission / link).unlink()
-        os.symlink(target, submission / link)
+        path = submission / link
+        if path.is_dir() and not path.is_symlink():
+            shutil.rmtree(path)
+        else:
+            path.unlink()
+        os.symlink(os.path.relpath(target, path.parent) if meta.get("relative") else target, path)
     if not meta["symlinks"]:
         code = path.read_text().replace("{ROOT}", str(ROOT))
         target = submission / meta["file"]

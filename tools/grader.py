@@ -52,6 +52,69 @@ ALLOWED_SECTIONS = re.compile(
     r"\.init_array|\.fini_array|\.eh_frame|\.gcc_except_table(\..*)?|\.group|\.note\.GNU-stack|"
     r"\.note\.gnu\.property|\.comment|\.rela?\..*|\.symtab|\.strtab|\.shstrtab|\.debug_.*)$")
 
+# What a lab file may reference beyond the framework's API and its own code (the Grading page,
+# "What student code may use"): the C++ standard library's containers, strings, string streams,
+# the standard streams, exceptions and allocation; libm; and the C functions below. Nothing that
+# reaches files, processes, signals, memory maps, dynamic loading, threads, the environment or the
+# kernel directly: a test process then cannot end itself with a status of its choosing, write to a
+# descriptor it was not given, or read what it may not.
+ALLOWED_C = frozenset("""
+    malloc calloc realloc free aligned_alloc posix_memalign memalign
+    memcpy memmove memset memcmp memchr strlen strnlen strcmp strncmp strchr strrchr strstr
+    strcpy strncpy strcat strncat strtod strtof strtold strtol strtoll strtoul strtoull
+    atof atoi atol atoll sscanf __isoc99_sscanf __isoc23_sscanf
+    snprintf sprintf vsnprintf vsprintf printf vprintf puts putchar fprintf vfprintf fputs fputc
+    fwrite fflush stdout stderr __printf_chk __vprintf_chk __fprintf_chk __vfprintf_chk
+    __snprintf_chk __sprintf_chk __vsnprintf_chk __vsprintf_chk __memcpy_chk __memmove_chk
+    __memset_chk __strcpy_chk __strncpy_chk __strcat_chk __strncat_chk
+    abort __assert_fail __stack_chk_fail qsort bsearch abs labs llabs div ldiv rand srand
+    clock time clock_gettime gettimeofday __errno_location
+    __ctype_b_loc __ctype_tolower_loc __ctype_toupper_loc tolower toupper isalpha isdigit isspace
+    __gxx_personality_v0 _Unwind_Resume __dso_handle __libc_single_threaded __tls_get_addr
+    _GLOBAL_OFFSET_TABLE_ __cxa_atexit __cxa_finalize __cxa_thread_atexit_impl __dynamic_cast
+""".split())
+# Demangled names of the C++ runtime a lab file may reference (the standard library as its
+# headers instantiate it), less the parts that reach the system (FORBIDDEN_STD).
+ALLOWED_STD = re.compile(r"^(?:(?:typeinfo|typeinfo name|vtable|VTT|construction vtable) for )?"
+                         r"(?:std::|__gnu_cxx::|__cxxabiv1::|operator new|operator delete|__cxa_)")
+# The framework's and the labs' own names (their vtables and type information included).
+PHYSLAB_NAME = re.compile(r"^(?:(?:typeinfo|typeinfo name|vtable|VTT|construction vtable) for )?physlab::")
+FORBIDDEN_STD = re.compile(
+    r"^(?:(?:typeinfo|typeinfo name|vtable|VTT|construction vtable) for )?"
+    r"(?:std::(?:__cxx11::)?(?:basic_filebuf|basic_ifstream|basic_ofstream|basic_fstream|"
+    r"__basic_file|filesystem|experimental::filesystem|thread|this_thread|jthread|"
+    r"condition_variable|mutex|recursive_mutex|timed_mutex|shared_mutex|__future_base|"
+    r"__atomic_futex|__once_|call_once|set_terminate|set_unexpected|set_new_handler|"
+    r"quick_exit|_Exit|exit|at_quick_exit|atexit|system)|"
+    r"__gnu_cxx::stdio_(?:sync_)?filebuf)")
+# Why a refused symbol is refused, by family (the first match names it).
+FORBIDDEN_WHY = [
+    (re.compile(r"exit|^_Exit"), "it ends the process; throw an exception instead"),
+    (re.compile(r"^dl|_dl_|dl_iterate_phdr|_r_debug|_DYNAMIC|link_map"),
+     "it loads code or walks the loaded objects"),
+    (re.compile(r"fork|exec|spawn|system|popen|wait|kill|clone|daemon|setsid|setpgid|"
+                r"setuid|setgid|ptrace|prctl|setrlimit|prlimit"),
+     "it reaches other processes or the process itself"),
+    (re.compile(r"signal|sigaction|sigprocmask|raise|alarm|setitimer|sigsuspend|pause|longjmp|setjmp"),
+     "it handles signals or jumps out of the harness"),
+    (re.compile(r"mmap|munmap|mprotect|mremap|madvise|brk|sbrk|shm|memfd|process_vm"),
+     "it maps or protects memory"),
+    (re.compile(r"syscall"), "it is a raw system call"),
+    (re.compile(r"thread|mutex|cond|once|futex|sem_"),
+     "it starts or synchronises threads; lab code is single-threaded"),
+    (re.compile(r"env|environ|getpid|getuid|uname|hostname|socket|connect|bind|listen|accept|send|recv"),
+     "it reaches the environment or the network"),
+    (re.compile(r"open|creat|close|read|write|seek|stat|unlink|remove|rename|mkdir|rmdir|chdir|"
+                r"link|chmod|chown|dup|pipe|fcntl|ioctl|sendfile|splice|truncate|sync|getdents|"
+                r"filebuf|fstream|__basic_file|filesystem|FILE|tmp|opendir|readdir|fopen|fdopen|"
+                r"freopen|fscanf|fgets|fread|getline|getchar|scanf"),
+     "it reaches files; lab code reads and writes none"),
+]
+# Instructions that enter the kernel: no lab file needs one, and only inline assembly writes one.
+KERNEL_ENTRY_RE = re.compile(r"^\s*[0-9a-f]+:\s+(syscall|sysenter|int\s+\$0x[0-9a-f]+|int1|vmcall)\b",
+                             re.MULTILINE)
+ASM_KEYWORD_RE = re.compile(r"\b(asm|__asm|__asm__)\b")
+
 
 # ---- text that reaches a report ----------------------------------------------------------------
 
@@ -401,7 +464,7 @@ def run_sandboxed_test(sandbox: Sandbox, slot: int, exe: Path, case: TestCase, s
             code, case.seconds = sandbox.run(
                 cmd, slot=slot, cwd=home, timeout=budget, memory=TEST_MEMORY, stdout=out_fd,
                 pass_fds=(read_end, verdict_fd),
-                extra_env={"PHYSLAB_VERDICT": f"{read_end}:{verdict_fd}"})
+                extra_env={"PHYSLAB_VERDICT": f"{read_end}:{verdict_fd}:{case.name.encode('utf-8').hex()}"})
         finally:
             for fd in (read_end, out_fd, verdict_fd):
                 os.close(fd)
@@ -411,35 +474,43 @@ def run_sandboxed_test(sandbox: Sandbox, slot: int, exe: Path, case: TestCase, s
         shutil.rmtree(work, ignore_errors=True)
 
 
+# How the harness's child ends (tests/support/runner.cpp, Outcome): only 0 is a pass.
+OUTCOMES = {1: None, 3: "the test ran but asserted nothing",
+            4: "the harness ran other test cases than this one"}
+
+
 def judge(case: TestCase, code, budget: float, key: str, verdicts: str, output: str) -> None:
-    """Sets the case's status: passed only on a verdict line carrying this run's key that says
-    exactly this test ran, asserted something, and failed nothing."""
+    """Sets the case's status from the notary's line carrying this run's key: passed only when the
+    process that ran the test exited with status 0 (exactly this test ran, asserted something and
+    failed nothing). The test's output only explains a failure."""
     verdict = None
     for line in verdicts.splitlines():
         parts = line.split(" ")
-        if len(parts) == 6 and parts[0] == "physlab-verdict" and hmac.compare_digest(parts[1], key):
-            verdict = parts
+        if len(parts) == 4 and parts[0] == "physlab-verdict" and hmac.compare_digest(parts[1], key) \
+                and parts[2] in ("exit", "signal") and parts[3].isdigit():
+            verdict = (parts[2], int(parts[3]))
     status, detail = describe_failure(output)
     if code is None:
         case.status = "timed out"
         case.output = f"killed after {budget:.3g} s" + (f"\n{detail}" if detail else "")
         return
-    if verdict is not None:
-        cases, passed, failed, name_hex = verdict[2:]
-        same = name_hex == case.name.encode("utf-8").hex()
-        if cases == "1" and same and failed == "0" and passed != "0":
-            case.status, case.output = "passed", ""
-            return
-        if cases != "1" or not same:
-            status, detail = "failed", f"the harness ran {cases} test cases instead of this one"
-    elif code < 0:
-        name = signal.Signals(-code).name if -code in signal.Signals._value2member_map_ else str(-code)
-        why = " (output limit exceeded)" if -code == signal.SIGXFSZ else ""
+    if verdict == ("exit", 0):
+        case.status, case.output = "passed", ""
+        return
+    if verdict is not None and verdict[0] == "signal":
+        number = verdict[1]
+        name = signal.Signals(number).name if number in signal.Signals._value2member_map_ else str(number)
+        why = " (output limit exceeded)" if number == signal.SIGXFSZ else ""
         case.status = "crashed"
         case.output = f"crashed ({name}){why}" + (f"\n{detail}" if detail else "")
         return
-    elif not detail:
-        status, detail = "crashed", f"the test process ended (exit code {code}) without a verdict"
+    if verdict is not None and verdict[1] in OUTCOMES:
+        if OUTCOMES[verdict[1]]:
+            status, detail = "failed", OUTCOMES[verdict[1]] + (f"\n{detail}" if detail else "")
+    elif verdict is not None:
+        status, detail = "crashed", f"the test process ended (exit code {verdict[1]}) without a verdict"
+    else:
+        status, detail = "crashed", "the test process ended without a verdict" + (f"\n{detail}" if detail else "")
     case.status = status
     case.output = detail or output[-OUTPUT_LIMIT:]
 
@@ -668,6 +739,8 @@ class Kit:
                 digest.update(str(h.relative_to(ROOT)).encode() + h.read_bytes())
         self.digest = digest.hexdigest()
         self._exports = None
+        self._libm = None
+        self._api = {}
         self._symbols = {}
 
     def compile_command(self, include: Path, source: Path, obj: Path) -> list:
@@ -676,6 +749,12 @@ class Kit:
         for d in self.toolchain["system_include"]:
             cmd += ["-isystem", d]
         return cmd + ["-MD", "-MF", str(obj.with_suffix(".d")), "-c", str(source), "-o", str(obj)]
+
+    def preprocess_command(self, include: Path, source: Path, out: Path) -> list:
+        cmd = [self.toolchain["compiler"]] + self.toolchain["flags"].split() + ["-I", str(include)]
+        for d in self.toolchain["system_include"]:
+            cmd += ["-isystem", d]
+        return cmd + ["-E", str(source), "-o", str(out)]
 
     def link_command(self, stage: str, tests: str, student: list, exe: Path) -> list:
         spec = self.stages[stage]
@@ -710,6 +789,50 @@ class Kit:
                 found |= set(self.symbols(p)[0])
         return found
 
+    def libm(self) -> set:
+        """The functions of the maths library (libm), every one of which a lab file may call."""
+        if self._libm is None:
+            path = subprocess.run([self.toolchain["compiler"], "-print-file-name=libm.so.6"],
+                                  capture_output=True, text=True).stdout.strip()
+            listing = subprocess.run(["nm", "-D", "--defined-only", path], capture_output=True,
+                                     text=True, errors="replace").stdout
+            self._libm = {l.split()[-1].split("@")[0] for l in listing.splitlines() if l.split()}
+        return self._libm
+
+    def framework_api(self, stage: str) -> set:
+        """What a lab file of `stage` may call in the framework and earlier labs: every global
+        symbol of the stage's library side, less those of object files that reach the system
+        (plotting and demo output), directly or through another such file; no lab file needs them."""
+        if stage not in self._api:
+            spec = self.stages[stage]
+            members = {}  # (library, member) -> (defined, imported)
+            for path in spec["framework"] + spec["depends"] + [self.toolchain["common"]]:
+                if path.startswith("-") or not os.path.exists(path):
+                    continue
+                listing = subprocess.run(["nm", "-P", "-A", "-g", path], capture_output=True,
+                                         timeout=60, text=True, errors="replace").stdout
+                for line in listing.splitlines():
+                    member, _, rest = line.rpartition(": ")
+                    parts = rest.split()
+                    if len(parts) >= 2:
+                        defined, imported = members.setdefault(member, (set(), set()))
+                        (imported if parts[1] in "Uwv" else defined).add(parts[0])
+            inside = set().union(*(d for d, _ in members.values())) if members else set()
+            outside = demangle(set().union(*(i for _, i in members.values())) - inside
+                               - ALLOWED_C - self.libm()) if members else {}
+            system = {n for n, d in outside.items() if not PHYSLAB_NAME.match(d)
+                      and (not ALLOWED_STD.match(d) or FORBIDDEN_STD.match(d))}
+            reaching, refused, allowed = set(), set(system), set(inside)
+            while True:
+                more = {m for m, (_, i) in members.items() if m not in reaching and i & refused}
+                if not more:
+                    break
+                reaching |= more
+                allowed = set().union(set(), *(d for m, (d, _) in members.items() if m not in reaching))
+                refused = system | (inside - allowed)
+            self._api[stage] = allowed
+        return self._api[stage]
+
     def exports(self) -> set:
         """Symbols the shared libraries of the link define: a student's weak definition of one
         would replace it for the whole executable (the harness included), so none is allowed."""
@@ -724,6 +847,51 @@ class Kit:
                                          text=True, errors="replace").stdout
                 self._exports |= {l.split()[-1].split("@")[0] for l in listing.splitlines() if l.split()}
         return self._exports
+
+
+LINE_MARKER_RE = re.compile(r'^# (\d+) "((?:[^"\\]|\\.)*)"')
+LITERAL_RE = re.compile(r'R"([^ ()\\\t\n]{0,16})\((?:.|\n)*?\)\1"|"(?:[^"\\\n]|\\.)*"|\'(?:[^\'\\\n]|\\.)*\'')
+
+
+def inline_assembly(preprocessed: Path, source: Path) -> str:
+    """Where the student's own lines use inline assembly after preprocessing (so a macro cannot
+    hide it), e.g. "asm at line 12"; "" when they do not. Lines of headers are not the student's:
+    the tokens a student's macro produces are attributed to the line that uses it."""
+    try:
+        text = read_capped(preprocessed, COMPILE_OUTPUT)
+    except OSError:
+        return "its preprocessed source could not be checked"
+    own, line, found, lines = False, 0, [], []
+    for raw in text.splitlines():
+        m = LINE_MARKER_RE.match(raw)
+        if m:
+            line, own = int(m.group(1)), m.group(2) == str(source)
+            continue
+        if own:
+            lines.append((line, raw))
+        line += 1
+    code = LITERAL_RE.sub('""', "\n".join(raw for _, raw in lines))
+    for number, kept in zip((n for n, _ in lines), code.split("\n")):
+        m = ASM_KEYWORD_RE.search(kept)
+        if m:
+            found.append(f"{m.group(1)} at line {number}")
+    return ", ".join(found[:3])
+
+
+def kernel_entries(obj: Path) -> list:
+    """Instructions of the object that enter the kernel (syscall, sysenter, int $n)."""
+    listing = subprocess.run(["objdump", "-d", "--no-show-raw-insn", str(obj)], capture_output=True,
+                             text=True, errors="replace", timeout=60).stdout
+    return sorted({" ".join(m.group(1).split()) for m in KERNEL_ENTRY_RE.finditer(listing)})
+
+
+def why_refused(name: str) -> str:
+    if PHYSLAB_NAME.match(name):
+        return "it is framework code that writes files or runs programs (plots, demo output), which no lab file needs"
+    for pattern, why in FORBIDDEN_WHY:
+        if pattern.search(name):
+            return why
+    return "it is not among the functions a lab file may use (see the Grading page)"
 
 
 def sections_of(obj: Path) -> list:
@@ -759,11 +927,19 @@ def check_object(kit: Kit, stage: str, obj: Path, stub_defined: set, own_defined
     weak = [s for s, t in defined.items() if t in "WVu" and s in exports and s not in stub_defined]
     reached = [s for s in undefined if s in test_side and s not in library_side
                and s not in own_defined and s not in exports]
+    framework = kit.framework_api(stage)
+    libm = kit.libm()
+    imports = demangle(s for s in undefined if s not in own_defined and s not in framework
+                       and s not in libm and s not in ALLOWED_C and s not in reached)
+    refused = sorted(d for n, d in imports.items() if (PHYSLAB_NAME.match(d) and n in library_side) or
+                     (not PHYSLAB_NAME.match(d) and (not ALLOWED_STD.match(d) or FORBIDDEN_STD.match(d))))
     names = demangle(strong + weak + reached)
     problems += [f"defines {names[s]}, which the stub does not: make helpers static or put them "
                  f"in an anonymous namespace" for s in strong]
     problems += [f"defines {names[s]}, a library function" for s in weak]
     problems += [f"uses {names[s]}, which belongs to the test harness" for s in reached]
+    problems += [f"uses {n}: {why_refused(n)}" for n in refused]
+    problems += [f"contains the instruction '{i}', which enters the kernel" for i in kernel_entries(obj)]
     return problems
 
 
@@ -834,7 +1010,12 @@ class Builder:
             log_path = self.private / stage / f"{prefix}{name}.log"
             log_fd = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
             obj = work / name.replace(".cpp", ".o")
+            preprocessed = work / name.replace(".cpp", ".ii")
             try:
+                self.sandbox.run(self.kit.preprocess_command(self.include, work / name, preprocessed),
+                                 slot=slot, cwd=work, timeout=budget, memory=COMPILE_MEMORY,
+                                 stdout=subprocess.DEVNULL, fsize=COMPILE_OUTPUT)
+                budget = min(self.compile_timeout, self.deadline.left())
                 code, _ = self.sandbox.run(self.kit.compile_command(self.include, work / name, obj),
                                            slot=slot, cwd=work, timeout=budget,
                                            memory=COMPILE_MEMORY, stdout=log_fd, fsize=COMPILE_OUTPUT)
@@ -852,6 +1033,10 @@ class Builder:
                 return Compiled(error=f"{name}: compilation stopped after {budget:.0f} s")
             if code != 0 or not obj.exists():
                 return Compiled(log=log, error=f"{name} did not compile")
+            assembly = inline_assembly(preprocessed, work / name)
+            if assembly:
+                return Compiled(error=f"{name}: refused: inline assembly ({assembly}); lab code "
+                                      f"is C++ only")
             shutil.copyfile(obj, target)
             shutil.copyfile(target, cached)
             cached_log.write_text(log)
@@ -883,45 +1068,114 @@ class Builder:
         return "\n".join(lines) or "the lab did not link"
 
 
-def submitted_sources(labs: Path, stage: str, notes: list) -> dict:
-    """name -> bytes of the lab files to grade: the submission's regular files named as the stub's
-    files of the stage; the stub where the submission has none."""
-    sources = {}
-    for stub in sorted((ROOT / "labs" / stage).glob("*.cpp")):
-        path = labs / stage / stub.name
-        try:
-            info = os.lstat(path)
-        except OSError:
-            notes.append(f"{stub.name} is not in the submission: graded with the stub")
-            sources[stub.name] = stub.read_bytes()
-            continue
+def open_folder(root: Path, parts: tuple) -> int:
+    """A descriptor of the folder root/parts, reached without following any link below root;
+    raises LinkError naming the first component that is a link, OSError when it is missing."""
+    fd = os.open(root, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        for depth, part in enumerate(parts):
+            shown = "/".join(parts[:depth + 1])
+            if stat.S_ISLNK(os.stat(part, dir_fd=fd, follow_symlinks=False).st_mode):
+                raise LinkError(shown)
+            inner = os.open(part, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW, dir_fd=fd)
+            os.close(fd)
+            fd = inner
+        return fd
+    except BaseException:
+        os.close(fd)
+        raise
+
+
+class LinkError(OSError):
+    """A component of a submitted path is a symbolic link; its `path` is shown in the report."""
+
+    def __init__(self, path: str):
+        super().__init__(f"{path} is a symbolic link")
+        self.path = path
+
+
+def read_regular(folder: int, name: str, shown: str) -> bytes:
+    """The bytes of the regular file `name` in the open folder, never through a link; raises
+    OSError (LinkError for a link) with the reason the file cannot be used."""
+    if stat.S_ISLNK(os.stat(name, dir_fd=folder, follow_symlinks=False).st_mode):
+        raise LinkError(shown)
+    fd = os.open(name, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK, dir_fd=folder)
+    try:
+        info = os.fstat(fd)
         if not stat.S_ISREG(info.st_mode):
-            notes.append(f"{stub.name} is not a regular file (a link?): graded with the stub")
-            sources[stub.name] = stub.read_bytes()
-        elif info.st_size > SOURCE_LIMIT:
-            notes.append(f"{stub.name} is larger than {SOURCE_LIMIT >> 10} KiB: graded with the stub")
-            sources[stub.name] = stub.read_bytes()
-        else:
-            with open(path, "rb", opener=lambda p, f: os.open(p, f | os.O_NOFOLLOW)) as f:
-                sources[stub.name] = f.read(SOURCE_LIMIT)
-    stage_dir = labs / stage
-    if stage_dir.is_dir() and not stage_dir.is_symlink():
-        extra = sorted(p.name for p in stage_dir.iterdir() if p.name not in sources)
+            raise OSError(f"{shown} is not a regular file")
+        if info.st_size > SOURCE_LIMIT:
+            raise OSError(f"{shown} is larger than {SOURCE_LIMIT >> 10} KiB")
+        with os.fdopen(os.dup(fd), "rb") as f:
+            return f.read(SOURCE_LIMIT)
+    finally:
+        os.close(fd)
+
+
+@dataclass
+class Submitted:
+    """Where a submission's lab folders are: root/parts/NN_name (parts is ("labs",) or ())."""
+    root: Path
+    parts: tuple
+
+
+def submitted_sources(labs: Submitted, stage: str, notes: list) -> dict:
+    """name -> bytes of the lab files to grade: the submission's regular files named as the stub's
+    files of the stage, each reached without following a link at any level below the submission's
+    root; the stub where the submission has none, with a note naming the link or the reason."""
+    stubs = {p.name: p for p in sorted((ROOT / "labs" / stage).glob("*.cpp"))}
+    parts = labs.parts + (stage,)
+    try:
+        folder = open_folder(labs.root, parts)
+    except LinkError as link:
+        notes.append(f"{link.path} is a symbolic link: links are not followed, so this lab is "
+                     f"graded with the stubs")
+        return {name: stub.read_bytes() for name, stub in stubs.items()}
+    except OSError:
+        notes.append(f"{'/'.join(parts)} is not in the submission: graded with the stubs")
+        return {name: stub.read_bytes() for name, stub in stubs.items()}
+    sources = {}
+    try:
+        for name, stub in stubs.items():
+            shown = "/".join(parts + (name,))
+            try:
+                sources[name] = read_regular(folder, name, shown)
+            except LinkError:
+                notes.append(f"{shown} is a symbolic link: links are not followed, so it is graded "
+                             f"with the stub")
+            except FileNotFoundError:
+                notes.append(f"{name} is not in the submission: graded with the stub")
+            except OSError as error:
+                notes.append(f"{error.strerror or error}: graded with the stub")
+            if name not in sources:
+                sources[name] = stub.read_bytes()
+        extra = sorted(n for n in os.listdir(folder) if n not in sources)
         if extra:
             notes.append(f"ignored (only the stub's files are graded): {', '.join(extra[:10])}")
+    finally:
+        os.close(folder)
     return sources
 
 
 def find_labs(submission: Path):
-    """The labs/ folder inside a submission (a labs/ copy or a whole repo), or None."""
-    for candidate in (submission / "labs", submission):
-        if candidate.is_dir() and not candidate.is_symlink() and \
-                any(STAGE_RE.match(p.name) for p in candidate.iterdir()):
-            return candidate
+    """Where the lab folders of a submission (a labs/ copy or a whole repo) are, or None. A linked
+    labs/ is not followed: its labs are then reported as links, one note each."""
+    for parts in (("labs",), ()):
+        try:
+            fd = open_folder(submission, parts)
+        except LinkError:
+            return Submitted(submission, parts)
+        except OSError:
+            continue
+        try:
+            if any(STAGE_RE.match(n) for n in os.listdir(fd)):
+                return Submitted(submission, parts)
+        finally:
+            os.close(fd)
     return None
 
 
-def build_stage(builder: Builder, kit: Kit, labs: Path, result: StageResult, hidden: list,
+def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult, hidden: list,
                 run_dir: Path) -> tuple:
     """Compiles, checks and links one stage; returns (visible exe, hidden exe) or (None, None)."""
     stage = result.stage

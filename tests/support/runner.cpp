@@ -1,21 +1,30 @@
 // The main() of every test executable: Catch2's session, plus a verdict the grader can trust.
 //
 // A test's output and exit code come from a process that also runs student code, which can print
-// anything and exit with any code, so the grader counts neither as a pass. Instead, when the
-// grader sets PHYSLAB_VERDICT=<key fd>:<verdict fd>, this file
-//  1. reads a fresh secret key from <key fd> in .preinit_array, which runs before every
-//     constructor of the executable and so before any student code, and closes that descriptor;
-//  2. counts the test cases and assertions Catch2 ran, with a listener;
-//  3. writes one line "physlab-verdict <key> <cases> <passed> <failed> <name in hex>" to
-//     <verdict fd> when the session ends, then leaves with _exit() so that no student code
-//     (static destructors, atexit handlers) runs after the verdict.
-// Student code never learns the key by reading the channel; what remains possible for code that
-// searches its own process's memory is written on the Grading page.
+// anything and read or write any of its own memory, so the grader counts neither its output nor a
+// secret it holds as a pass. Instead, when the grader sets
+// PHYSLAB_VERDICT=<key fd>:<verdict fd>:<test name in hex>, this file
+//  1. forks in .preinit_array, which runs before every constructor of the executable and so before
+//     any student code. The parent becomes the notary: it reads a fresh secret key from <key fd>,
+//     waits for the child and writes one line "physlab-verdict <key> exit <code>" (or
+//     "signal <number>") to <verdict fd>, then leaves with _exit(). It never returns from
+//     .preinit_array, so no constructor and no line of student code ever runs in it;
+//  2. the child closes both descriptors before anything else runs, so student code never holds the
+//     key nor the verdict channel; it runs the one test with a listener that counts the test cases
+//     and assertions Catch2 ran;
+//  3. when the session ends, the child leaves with _exit(): 0 only if exactly the named test ran,
+//     asserted something and failed nothing (see Outcome). No student code (static destructors,
+//     atexit handlers) runs after that.
+// Student code cannot end a process with a status of its choosing: the grader refuses objects that
+// import exit(), _exit(), system calls or anything else of the kind. What remains possible is on
+// the Grading page.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -24,10 +33,10 @@
 
 namespace {
 
+// The child's side of the channel: whether it runs under the grader, and the test it must run.
 struct Channel {
-  char key[64] = {};
-  int key_size = 0;
-  int fd = -1;  // where the verdict goes; -1 outside the grader
+  bool graded = false;
+  char expected[4096] = {};  // the test's name in hex
 };
 Channel channel;
 
@@ -49,28 +58,80 @@ int parseFd(const char*& s, char stop) {
   return value;
 }
 
+// Writes all of `data` to fd; false if the descriptor refuses.
+bool writeAll(int fd, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t wrote = write(fd, data, size);
+    if (wrote <= 0) return false;
+    data += wrote;
+    size -= static_cast<std::size_t>(wrote);
+  }
+  return true;
+}
+
+// Appends the decimal digits of value to out at *at.
+void appendNumber(char* out, std::size_t& at, unsigned value) {
+  char digits[16];
+  int n = 0;
+  do {
+    digits[n++] = static_cast<char>('0' + value % 10);
+    value /= 10;
+  } while (value != 0);
+  while (n > 0) out[at++] = digits[--n];
+}
+
+// The notary: the parent after the fork. Reads the key, waits for the child that runs the test and
+// writes how it ended, then leaves without returning (no constructor of the executable runs here).
+[[noreturn]] void notarise(pid_t child, int key_fd, int verdict_fd) {
+  char line[160] = "physlab-verdict ";
+  std::size_t at = std::strlen(line);
+  const std::size_t key_end = at + 64;
+  ssize_t got = 0;
+  while (at < key_end && (got = read(key_fd, line + at, key_end - at)) > 0) at += static_cast<std::size_t>(got);
+  close(key_fd);
+  int status = 0;
+  pid_t waited = -1;
+  while ((waited = waitpid(child, &status, 0)) < 0 && errno == EINTR) {
+  }
+  if (at == key_end && waited == child) {
+    const bool exited = WIFEXITED(status);
+    const char* how = exited ? " exit " : " signal ";
+    std::memcpy(line + at, how, std::strlen(how));
+    at += std::strlen(how);
+    appendNumber(line, at, static_cast<unsigned>(exited ? WEXITSTATUS(status) : WTERMSIG(status)));
+    line[at++] = '\n';
+    writeAll(verdict_fd, line, at);
+  }
+  _exit(0);
+}
+
 // Runs from .preinit_array, before the C++ runtime and the executable's constructors: it uses the
 // environment it is handed and plain system calls only.
-void takeKey(int, char**, char** envp) {
+void startNotary(int, char**, char** envp) {
   static const char kVariable[] = "PHYSLAB_VERDICT=";
   for (char** e = envp; e && *e; ++e) {
     if (std::strncmp(*e, kVariable, sizeof kVariable - 1) != 0) continue;
     const char* spec = *e + sizeof kVariable - 1;
     const int key_fd = parseFd(spec, ':');
-    const int verdict_fd = parseFd(spec, '\0');
+    const int verdict_fd = parseFd(spec, ':');
     if (key_fd < 0 || verdict_fd < 0) return;
-    ssize_t got = 0;
-    while (channel.key_size < static_cast<int>(sizeof channel.key) &&
-           (got = read(key_fd, channel.key + channel.key_size, sizeof channel.key - channel.key_size)) > 0) {
-      channel.key_size += static_cast<int>(got);
+    if (std::strlen(spec) >= sizeof channel.expected) {  // no verdict: the test scores nothing
+      close(key_fd);
+      close(verdict_fd);
+      return;
     }
+    const pid_t child = fork();
+    if (child > 0) notarise(child, key_fd, verdict_fd);
     close(key_fd);
-    if (channel.key_size > 0) channel.fd = verdict_fd;
+    close(verdict_fd);
+    if (child < 0) _exit(125);  // no notary: the grader sees no verdict and scores nothing
+    std::strcpy(channel.expected, spec);
+    channel.graded = true;
     return;
   }
 }
 
-__attribute__((section(".preinit_array"), used)) void (*preinit_take_key)(int, char**, char**) = takeKey;
+__attribute__((section(".preinit_array"), used)) void (*preinit_start_notary)(int, char**, char**) = startNotary;
 
 std::string hex(const std::string& text) {
   static const char digits[] = "0123456789abcdef";
@@ -93,18 +154,14 @@ class VerdictListener : public Catch::TestEventListenerBase {
   }
 };
 
-void writeVerdict() {
-  const std::string line = "physlab-verdict " + std::string(channel.key, channel.key_size) + " " +
-                           std::to_string(tally.cases) + " " + std::to_string(tally.passed) + " " +
-                           std::to_string(tally.failed) + " " + hex(tally.name) + "\n";
-  const char* data = line.data();
-  std::size_t left = line.size();
-  while (left > 0) {
-    const ssize_t wrote = write(channel.fd, data, left);
-    if (wrote <= 0) return;
-    data += wrote;
-    left -= static_cast<std::size_t>(wrote);
-  }
+// How the graded child ends; the grader passes a test only on exit status 0.
+enum Outcome : int { kPassed = 0, kFailed = 1, kNothingAsserted = 3, kOtherTests = 4 };
+
+Outcome outcome() {
+  if (tally.cases != 1 || hex(tally.name) != channel.expected) return kOtherTests;
+  if (tally.failed != 0) return kFailed;
+  if (tally.passed == 0) return kNothingAsserted;
+  return kPassed;
 }
 
 // One line per test case: its name in hex, a tab, its tags joined by commas. The grader reads the
@@ -128,9 +185,8 @@ int main(int argc, char** argv) {
   const int status = session.applyCommandLine(argc, argv);
   if (status != 0) return status;
   const int failures = session.run();
-  if (channel.fd < 0) return failures;
+  if (!channel.graded) return failures;
   std::cout.flush();
   std::fflush(nullptr);
-  writeVerdict();
-  _exit(failures == 0 ? 0 : 1);
+  _exit(outcome());
 }
