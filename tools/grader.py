@@ -664,6 +664,8 @@ def cmd_run(args) -> int:
     results, jobs = [], []
     for stage in stages:
         result = StageResult(stage)
+        if args.variant == "labs" and args.expect != "fail":
+            result.notes += refusals_ahead(build, stage)
         for exe in executables(build, stage, args.variant):
             if not exe.exists():
                 result.compile_error += f"{exe.name} was not built\n"
@@ -927,20 +929,45 @@ def check_object(kit: Kit, stage: str, obj: Path, stub_defined: set, own_defined
     weak = [s for s, t in defined.items() if t in "WVu" and s in exports and s not in stub_defined]
     reached = [s for s in undefined if s in test_side and s not in library_side
                and s not in own_defined and s not in exports]
-    framework = kit.framework_api(stage)
-    libm = kit.libm()
-    imports = demangle(s for s in undefined if s not in own_defined and s not in framework
-                       and s not in libm and s not in ALLOWED_C and s not in reached)
-    refused = sorted(d for n, d in imports.items() if (PHYSLAB_NAME.match(d) and n in library_side) or
-                     (not PHYSLAB_NAME.match(d) and (not ALLOWED_STD.match(d) or FORBIDDEN_STD.match(d))))
     names = demangle(strong + weak + reached)
     problems += [f"defines {names[s]}, which the stub does not: make helpers static or put them "
                  f"in an anonymous namespace" for s in strong]
     problems += [f"defines {names[s]}, a library function" for s in weak]
     problems += [f"uses {names[s]}, which belongs to the test harness" for s in reached]
-    problems += [f"uses {n}: {why_refused(n)}" for n in refused]
-    problems += [f"contains the instruction '{i}', which enters the kernel" for i in kernel_entries(obj)]
-    return problems
+    return problems + import_problems(kit, stage, obj, own_defined | set(reached))
+
+
+def import_problems(kit: Kit, stage: str, obj: Path, own_defined: set) -> list:
+    """What the object uses that a lab file may not (the allow-list on the Grading page), and the
+    instructions in it that enter the kernel; each with its reason."""
+    _, undefined = kit.symbols(str(obj))
+    spec = kit.stages[stage]
+    library_side = kit.defined_by(spec["framework"] + spec["depends"] + [kit.toolchain["common"]])
+    framework, libm = kit.framework_api(stage), kit.libm()
+    imports = demangle(s for s in undefined if s not in own_defined and s not in framework
+                       and s not in libm and s not in ALLOWED_C)
+    refused = sorted(d for n, d in imports.items() if (PHYSLAB_NAME.match(d) and n in library_side) or
+                     (not PHYSLAB_NAME.match(d) and (not ALLOWED_STD.match(d) or FORBIDDEN_STD.match(d))))
+    problems = [f"uses {n}: {why_refused(n)}" for n in refused]
+    return problems + [f"contains the instruction '{i}', which enters the kernel" for i in kernel_entries(obj)]
+
+
+def refusals_ahead(build: Path, stage: str) -> list:
+    """For a student's own build: the grader's import refusals of the lab files as compiled here,
+    so a student learns of them before submitting rather than from a grade of 0."""
+    try:
+        kit = Kit(build)
+    except RuntimeError:
+        return []
+    if stage not in kit.stages:
+        return []
+    objects = sorted((build / "CMakeFiles" / f"physlab_{stage}_labs.dir").rglob("*.o"))
+    own = kit.defined_by([str(o) for o in objects])
+    notes = []
+    for obj in objects:
+        notes += [f"the grader will refuse {obj.name.removesuffix('.o')}: {p}"
+                  for p in import_problems(kit, stage, obj, own)]
+    return notes
 
 
 def filter_diagnostics(text: str, allowed: list, shown: dict) -> str:
