@@ -28,8 +28,9 @@ SpringJacobian springJacobian(const Spring& spring, const Vec3& xa, const Vec3& 
 }
 
 Vec3 groundForce(const Ground& ground, const Vec3& x, const Vec3& v) {
-  // Above the ground nothing pushes
-  // TODO(student): depth d = height - z; return zero when d <= 0.
+  // Above the ground, or with the ground switched off (stiffness 0), nothing pushes
+  // TODO(student): depth d = height - z; return zero when d <= 0 (touching is not contact) or
+  // when ground.stiffness is 0 (the damper too is off then).
   // Below it a spring pushes up in proportion to the depth, and a damper resists motion in z
   // TODO(student): (0, 0, k d - c v_z).
   notImplemented("groundForce", "Lab 2 handout, section 4", ground, x, v);

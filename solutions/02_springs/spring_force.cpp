@@ -42,9 +42,9 @@ SpringJacobian springJacobian(const Spring& spring, const Vec3& xa, const Vec3& 
 }
 
 Vec3 groundForce(const Ground& ground, const Vec3& x, const Vec3& v) {
-  // Above the ground nothing pushes
+  // Above the ground, or with the ground switched off (stiffness 0), nothing pushes
   const double depth = ground.height - x.z();
-  if (depth <= 0.0) return Vec3::Zero();
+  if (ground.stiffness == 0.0 || depth <= 0.0) return Vec3::Zero();
   // Below it a spring pushes up in proportion to the depth, and a damper resists motion in z
   return Vec3(0.0, 0.0, ground.stiffness * depth - ground.damping * v.z());
 }

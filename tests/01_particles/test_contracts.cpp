@@ -2,6 +2,7 @@
 // its formula on a nonlinear system, Newton's failure, pinned particles in every force and
 // diagnostic, and forces that accumulate into buffers already holding other forces.
 #include "physlab/error.hpp"
+#include "physlab/scenes.hpp"
 #include "support.hpp"
 
 using namespace physlab;
@@ -151,6 +152,51 @@ TEST_CASE("implicit Euler: throws NumericalFailure when Newton runs out of itera
   Integrator starved(Method::ImplicitEuler, NewtonSettings{1, 1e-12});
   X = X0;
   CHECK_THROWS_AS(starved.step(sys, X, 0.2), NumericalFailure);
+}
+
+TEST_CASE("implicit Euler: Newton may converge on its last allowed iteration, the first one included", "[lab01][pts=1]") {
+  // A fixed linear oscillator, w = 2, h = 0.1: from the Euler guess the first Newton iteration
+  // lands on the solution (I - hJ)^-1 X0 and the second one's update is round-off, below the
+  // tolerance. So Newton needs exactly two iterations: max_iterations = 2 must succeed.
+  const HarmonicOscillator osc(2.0);
+  const double h = 0.1, hw2 = h * 2.0 * 2.0;
+  const VecX X0 = Eigen::Vector2d(1.0, 0.5);
+  const VecX expected = Eigen::Vector2d(X0[0] + h * X0[1], X0[1] - hw2 * X0[0]) / (1.0 + h * hw2);
+  VecX X = X0;
+  Integrator two(Method::ImplicitEuler, NewtonSettings{2, 1e-12});
+  REQUIRE_NOTHROW(two.step(osc, X, h));
+  CHECK((X - expected).norm() < 1e-14);  // a 2 x 2 solve of O(1) numbers: round-off only
+  // and one iteration is not enough: its update from the Euler guess is h^2 w^2 |X| ~ 0.04.
+  X = X0;
+  Integrator one(Method::ImplicitEuler, NewtonSettings{1, 1e-12});
+  CHECK_THROWS_AS(one.step(osc, X, h), NumericalFailure);
+  // A free particle at rest without forces is a fixed point: the Euler guess is the solution,
+  // the first update is exactly 0, and max_iterations = 1 (the least allowed) suffices.
+  const ParticleSystem still(VecX::Constant(1, 2.0));
+  const VecX Y0 = still.makeState(Vec3(0.25, -0.5, 1.0), Vec3::Zero());
+  VecX Y = Y0;
+  REQUIRE_NOTHROW(one.step(still, Y, h));
+  CHECK(Y == Y0);
+}
+
+TEST_CASE("integrators: one step costs the force evaluations its method documents", "[lab01][pts=1]") {
+  // Method's documentation: explicit and symplectic Euler 1, midpoint, trapezoid and Verlet 2,
+  // RK4 4. The drift reads the position rate (positionRateView()), which is no force evaluation.
+  const Coupled sys;
+  const std::vector<std::pair<Method, long>> costs = {
+      {Method::ExplicitEuler, 1}, {Method::SymplecticEuler, 1}, {Method::Midpoint, 2},
+      {Method::Trapezoid, 2},     {Method::RK4, 4},             {Method::Verlet, 2}};
+  for (const auto& [method, cost] : costs) {
+    INFO(methodName(method));
+    Integrator integrator(method);
+    VecX X = randomCoupledState();
+    sys.resetCount();
+    integrator.step(sys, X, 0.1);
+    CHECK(sys.forceEvaluations() == cost);
+    sys.resetCount();
+    integrator.step(sys, X, 0.1);
+    CHECK(sys.forceEvaluations() == cost);  // every step alike, none saved up from the first
+  }
 }
 
 TEST_CASE("particles: the velocity rate overwrites whatever its output buffer held", "[lab01][pts=1]") {

@@ -93,6 +93,74 @@ TEST_CASE("forces: N-body gravity matches Newton's law and minus the gradient of
   CHECK(F.rowwise().sum().norm() < 1e-13 * F.colwise().norm().maxCoeff() * 6);
 }
 
+TEST_CASE("forces: N-body gravity at both ends of its softening: eps = 0 is Newton's law, coincident softened particles feel no pull", "[lab01][pts=1]") {
+  // Fixed masses and positions. Softened (eps = 0.5), particles 0 and 1 coincide: their pair
+  // term G m m d / (|d|^2 + eps^2)^(3/2) is 0 and their potential -G m m / eps is finite.
+  // Unsoftened (eps = 0, the least allowed), particle 1 is moved off particle 0.
+  Cloud c{Eigen::Vector3d(1.0, 2.0, 3.0), Mat3X(3, 3), Mat3X::Zero(3, 3)};
+  c.x << 0.5, 0.5, -1.0,  //
+      -0.25, -0.25, 1.0,  //
+      1.0, 1.0, 3.0;
+  const double G = 1.5;
+  for (const double soft : {0.5, 0.0}) {
+    CAPTURE(soft);
+    if (soft == 0.0) c.x.col(1) += Vec3(0.0, 0.0, 1.0);
+    // The formula term by term, written here.
+    Mat3X expected = Mat3X::Zero(3, 3);
+    double U = 0.0;
+    for (Index i = 0; i < 3; ++i) {
+      for (Index j = 0; j < 3; ++j) {
+        if (i == j) continue;
+        const Vec3 d = c.x.col(j) - c.x.col(i);
+        expected.col(i) += G * c.m[i] * c.m[j] * d / std::pow(d.squaredNorm() + soft * soft, 1.5);
+        if (i < j) U -= G * c.m[i] * c.m[j] / std::sqrt(d.squaredNorm() + soft * soft);
+      }
+    }
+    const NBodyGravity gravity(G, soft);
+    const Mat3X F = forceOf(gravity, c);
+    REQUIRE(F.allFinite());
+    CHECK(relative(F, expected) < 1e-13);  // the same formula in another order: round-off only
+    CHECK(gravity.potential(c.view()) == Approx(U).epsilon(1e-13));
+  }
+}
+
+TEST_CASE("forces: damped spring by hand: stretched pulls, compressed pushes, damping resists approach and separation", "[lab01][pts=1]") {
+  // A spring along x: x_a = 0, x_b = (2, 0, 0), so l = (-2, 0, 0), |l| = 2, u = (-1, 0, 0);
+  // ks = 10, kd = 0.5. f_a = -[ks (|l| - r) + kd l_dot.u] u = (ks (2 - r) + kd l_dot.u, 0, 0).
+  // Every number is a short binary fraction: the arithmetic is exact, 1e-14 is only a guard.
+  Cloud c{VecX::Ones(2), Mat3X::Zero(3, 2), Mat3X::Zero(3, 2)};
+  c.x(0, 1) = 2.0;
+  struct Case {
+    double rest, va;  // rest length; particle a's x velocity (b is still), so l_dot.u = -va
+    double fa;        // expected x component of f_a
+    double geometric; // expected s / |l|, the transverse diagonal entries of -df_a/dl
+  };
+  for (const Case& k : {Case{1.0, 1.0, 9.5, 4.75},       // stretched by 1, a approaching b
+                        Case{1.0, -1.0, 10.5, 5.25},     // stretched by 1, a moving away
+                        Case{3.0, 1.0, -10.5, -5.25},    // compressed by 1, approaching
+                        Case{3.0, -1.0, -9.5, -4.75}}) { // compressed by 1, moving away
+    CAPTURE(k.rest, k.va);
+    c.v(0, 0) = k.va;
+    const DampedSpring spring(0, 1, k.rest, 10.0, 0.5);
+    Mat3X expected = Mat3X::Zero(3, 2);
+    expected(0, 0) = k.fa;
+    expected(0, 1) = -k.fa;
+    CHECK((forceOf(spring, c) - expected).norm() < 1e-14);
+    CHECK(spring.potential(c.view()) == Approx(5.0).epsilon(1e-14));  // 1/2 ks (1)^2 either way
+    // The Jacobians: df_a/dl = -[ks u u^T + (s / |l|) P] with P = diag(0, 1, 1) (the damping's
+    // u l_dot^T P term vanishes, l_dot being along u), df_a/dl_dot = -kd u u^T.
+    MatX dF_dx = MatX::Zero(6, 6), dF_dv = MatX::Zero(6, 6);
+    REQUIRE(spring.addJacobians(c.view(), dF_dx, dF_dv));
+    const Mat3 df_dl = -Vec3(10.0, k.geometric, k.geometric).asDiagonal().toDenseMatrix();
+    const Mat3 df_dldot = -Vec3(0.5, 0.0, 0.0).asDiagonal().toDenseMatrix();
+    MatX expected_x(6, 6), expected_v(6, 6);
+    expected_x << df_dl, -df_dl, -df_dl, df_dl;
+    expected_v << df_dldot, -df_dldot, -df_dldot, df_dldot;
+    CHECK((dF_dx - expected_x).norm() < 1e-14);
+    CHECK((dF_dv - expected_v).norm() < 1e-14);
+  }
+}
+
 TEST_CASE("forces: viscous drag is -d v and stores no energy", "[lab01][pts=1]") {
   const Cloud c = randomCloud(4, 1.0, 0.0);
   const double d = uniform(0.1, 3.0);

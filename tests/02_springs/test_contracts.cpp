@@ -195,6 +195,32 @@ TEST_CASE("implicit: the reported CG iterations are those block-Jacobi CG needs 
   CHECK(stats.iterations == expected.iterations);
 }
 
+TEST_CASE("implicit: CG that converges on its last allowed iteration is a success", "[lab02][pts=1]") {
+  const Scene scene = randomCloth();
+  const double h = uniform(0.01, 0.03), tolerance = 1e-6;
+  // The oracle's count from a cold start, as in the test above.
+  const Linearised lin = linearise(scene.net, scene.X, h);
+  SpringMatrix M(scene.net);
+  fillFromDense(scene.net, lin.A, M);
+  VecX dv = VecX::Zero(lin.b.size());
+  const CGResult needed = M.solveCG(lin.b, dv, tolerance, 1000);
+  REQUIRE(needed.converged);
+  REQUIRE(needed.iterations >= 2);
+  INFO("block-Jacobi CG from zero needs " << needed.iterations << " iterations");
+  // Allowed exactly that many (fresh systems: cold starts), the step succeeds and reports them;
+  // one fewer and it must throw.
+  const SpringSystem exact(scene.net);
+  VecX X = scene.X;
+  ImplicitStats stats;
+  REQUIRE_NOTHROW(stats = implicitEulerStep(exact, X, h, {LinearSolver::ConjugateGradient, tolerance, needed.iterations}));
+  CHECK(stats.iterations == needed.iterations);
+  CHECK(stats.residual <= tolerance);
+  const SpringSystem short_of_one(scene.net);
+  X = scene.X;
+  CHECK_THROWS_AS(implicitEulerStep(short_of_one, X, h, {LinearSolver::ConjugateGradient, tolerance, needed.iterations - 1}),
+                  NumericalFailure);
+}
+
 TEST_CASE("implicit: CG starts from the last step's dv, so repeating a solved step takes no iterations", "[lab02][pts=1]") {
   const Scene scene = randomCloth();
   const SpringSystem sys(scene.net);

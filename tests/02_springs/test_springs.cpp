@@ -71,6 +71,39 @@ TEST_CASE("springs: the force follows the lecture's formula", "[lab02][pts=2]") 
   CHECK((springForce(s, xa, xb, va, vb) - expected).norm() < 1e-12 * expected.norm());
 }
 
+TEST_CASE("springs: force and Jacobians by hand: stretched and compressed, approaching and separating", "[lab02][pts=1]") {
+  // A spring along x: x_a = 0, x_b = (2, 0, 0), so l = (-2, 0, 0), |l| = 2, u = (-1, 0, 0),
+  // P = diag(0, 1, 1); ks = 10, kd = 0.5; b still, a moving with (va, 1, 0), so l_dot.u = -va and
+  // P l_dot = (0, 1, 0). Then s = ks (2 - r) - kd va and f_a = -s u = (s, 0, 0) (no y: the damper
+  // acts along u only); df_a/dx_a = -[ks u u^T + (kd / |l|) u (P l_dot)^T + (s / |l|) P] =
+  // -diag(10, s/2, s/2) + 0.25 e_x e_y^T; the definite form -diag(10, m, m), m = max(0, ks (2 - r)) / 2;
+  // df_a/dv_a = -kd u u^T = -diag(0.5, 0, 0). Short binary fractions: exact, 1e-14 is a guard.
+  const Vec3 xa = Vec3::Zero(), xb(2.0, 0.0, 0.0), vb = Vec3::Zero();
+  struct Case {
+    double rest, va, s;
+  };
+  for (const Case& k : {Case{1.0, 1.0, 9.5},      // stretched, approaching
+                        Case{1.0, -1.0, 10.5},    // stretched, separating
+                        Case{3.0, 1.0, -10.5},    // compressed, approaching
+                        Case{3.0, -1.0, -9.5}}) { // compressed, separating
+    CAPTURE(k.rest, k.va);
+    const Spring s{0, 1, k.rest, 10.0, 0.5};
+    const Vec3 va(k.va, 1.0, 0.0);
+    CHECK((springForce(s, xa, xb, va, vb) - Vec3(k.s, 0.0, 0.0)).norm() < 1e-14);
+    Mat3 exact = -Vec3(10.0, k.s / 2, k.s / 2).asDiagonal().toDenseMatrix();
+    exact(0, 1) += 0.25;
+    const double m = std::max(0.0, 10.0 * (2.0 - k.rest)) / 2;
+    const Mat3 definite = -Vec3(10.0, m, m).asDiagonal().toDenseMatrix();
+    const Mat3 damping = -Vec3(0.5, 0.0, 0.0).asDiagonal().toDenseMatrix();
+    const SpringJacobian Je = springJacobian(s, xa, xb, va, vb, JacobianForm::Exact);
+    const SpringJacobian Jd = springJacobian(s, xa, xb, va, vb, JacobianForm::Definite);
+    CHECK((Je.dfa_dxa - exact).norm() < 1e-14);
+    CHECK((Je.dfa_dva - damping).norm() < 1e-14);
+    CHECK((Jd.dfa_dxa - definite).norm() < 1e-14);
+    CHECK((Jd.dfa_dva - damping).norm() < 1e-14);
+  }
+}
+
 TEST_CASE("springs: exact Jacobians match central differences", "[lab02][pts=2]") {
   for (int sample = 0; sample < 20; ++sample) {  // stretched and compressed, every direction
     const Spring s = randomSpring();
@@ -269,6 +302,34 @@ TEST_CASE("implicit: CG and LDLT take the same step", "[lab02][pts=1]") {
   CHECK((X - Y).norm() < 1e-8 * X.norm());
 }
 
+TEST_CASE("implicit: a network without springs: a lone particle falls with dv = h (m g - d v) / (m + h d), a pinned one stays", "[lab02][pts=1]") {
+  // No springs at all (an empty list), one free particle and one pinned, gravity and drag: A is
+  // (m + h d) 1 for the free particle and 1 for the pinned one, b = h (m g - d v) and 0.
+  SpringNetwork net;
+  net.masses = Eigen::Vector2d(2.0, std::numeric_limits<double>::infinity());
+  net.rest_positions = Mat3X::Zero(3, 2);
+  net.gravity = Vec3(0.0, 0.0, -9.81);
+  net.drag = 0.3;
+  const SpringSystem sys(net);
+  const double h = 0.02, m = 2.0, d = 0.3;
+  const Vec3 x0(0.5, -1.0, 2.0), v0(1.0, -0.5, 0.25);
+  const Vec3 v1 = v0 + h * (m * net.gravity - d * v0) / (m + h * d);
+  for (const LinearSolver solver : {LinearSolver::ConjugateGradient, LinearSolver::LDLT}) {
+    INFO(solverName(solver));
+    VecX X = VecX::Zero(12);
+    X.head<3>() = x0;
+    X.segment<3>(3) = Vec3(3.0, 0.0, 1.0);
+    X.segment<3>(6) = v0;
+    const VecX X0 = X;
+    implicitEulerStep(sys, X, h, {solver, 1e-12, 100});
+    // A diagonal system: CG's block-Jacobi preconditioner solves it in one iteration; round-off.
+    CHECK((X.segment<3>(6) - v1).norm() < 1e-14 * v1.norm());
+    CHECK((X.head<3>() - (x0 + h * v1)).norm() < 1e-14 * x0.norm());
+    CHECK(X.segment<3>(3) == X0.segment<3>(3));  // pinned, at rest: exactly where it was
+    CHECK(X.tail<3>() == X0.tail<3>());
+  }
+}
+
 TEST_CASE("implicit: pinned particles do not move", "[lab02][pts=1]") {
   SpringNetwork net = makeCloth(5, 5, 1.0, 1.0, 0.2, 500.0, 0.5);
   net.masses[0] = net.masses[4] = std::numeric_limits<double>::infinity();
@@ -291,6 +352,20 @@ TEST_CASE("implicit: a damped cloth pinned at two corners comes to rest", "[lab0
   for (int n = 0; n < 1200; ++n) implicitEulerStep(sys, X, 1.0 / 60);
   // After 20 s the swing (initially ~1 m/s) has decayed by orders of magnitude.
   CHECK(velocities(X).colwise().norm().maxCoeff() < 1e-3);
+}
+
+TEST_CASE("ground: touching the plane is no contact, and a ground switched off neither pushes nor damps", "[lab02][pts=1]") {
+  const Vec3 sinking(0.5, -0.25, -1.5), rising(0.5, -0.25, 1.5);
+  const Ground on{0.5, 1000.0, 4.0}, off{0.5, 0.0, 4.0};
+  for (const Vec3& v : {sinking, rising}) {
+    CAPTURE(v.z());
+    // Exactly at z = height the depth is 0, not > 0: no spring and no damper, whatever v.
+    CHECK(groundForce(on, Vec3(0.3, -0.2, 0.5), v).norm() == 0.0);
+    // Stiffness 0 switches the whole ground off, its damper included, at any depth.
+    CHECK(groundForce(off, Vec3(0.3, -0.2, 0.25), v).norm() == 0.0);
+    // while just below the switched-on plane both act: depth 0.25, (k d - c v_z) z exactly.
+    CHECK((groundForce(on, Vec3(0.3, -0.2, 0.25), v) - Vec3(0.0, 0.0, 250.0 - 4.0 * v.z())).norm() < 1e-12);
+  }
 }
 
 TEST_CASE("ground: the penalty force pushes up in proportion to depth", "[lab02][pts=1]") {

@@ -42,6 +42,52 @@ TEST_CASE("inertia: point masses of unequal mass obey the parallel-axis theorem"
   CHECK((shifted - about_origin).norm() < 1e-12 * about_origin.norm());
 }
 
+TEST_CASE("inertia: a single point mass has no inertia about itself, two make a rod", "[lab03][pts=1]") {
+  // One point mass (the least the header allows) sits at its own centre of mass: I = 0, up to
+  // the round-off of c = m r / m (~1e-16 |r|, squared).
+  const Mat3 single = pointMassInertia(VecX::Constant(1, 2.0), Vec3(1.0, -2.0, 3.0));
+  CHECK(single.norm() < 1e-12);
+  // Masses 1 at the origin and 3 at (4, 0, 0): c = (3, 0, 0), arms 3 and 1 across x, so
+  // I = (1 * 9 + 3 * 1) diag(0, 1, 1), exactly (small integers).
+  Mat3X r = Mat3X::Zero(3, 2);
+  r(0, 1) = 4.0;
+  const Mat3 rod = pointMassInertia(Eigen::Vector2d(1.0, 3.0), r);
+  CHECK((rod - Vec3(0.0, 12.0, 12.0).asDiagonal().toDenseMatrix()).norm() < 1e-14);
+}
+
+TEST_CASE("forces: the wrench of no force is zero, of one force that force and its moment", "[lab03][pts=1]") {
+  const Vec3 x(1.0, 0.0, 0.0);
+  // An empty list: nothing to sum, an exact zero.
+  const Wrench none = wrenchAbout(x, {});
+  CHECK(none.force.norm() == 0.0);
+  CHECK(none.torque.norm() == 0.0);
+  // By hand: (3 z) at x + (0, 2, 0) has moment (0, 2, 0) x (0, 0, 3) = (6, 0, 0); (3 x) at
+  // x + (0, 0, 2) has moment (0, 0, 2) x (3, 0, 0) = (0, 6, 0). Small integers: exact.
+  const Wrench one = wrenchAbout(x, {AppliedForce{Vec3(1.0, 2.0, 0.0), Vec3(0.0, 0.0, 3.0)}});
+  CHECK((one.force - Vec3(0.0, 0.0, 3.0)).norm() == 0.0);
+  CHECK((one.torque - Vec3(6.0, 0.0, 0.0)).norm() == 0.0);
+  const Wrench other = wrenchAbout(x, {AppliedForce{Vec3(1.0, 0.0, 2.0), Vec3(3.0, 0.0, 0.0)}});
+  CHECK((other.force - Vec3(3.0, 0.0, 0.0)).norm() == 0.0);
+  CHECK((other.torque - Vec3(0.0, 6.0, 0.0)).norm() == 0.0);
+}
+
+TEST_CASE("rigid: the exponential update at its edges: no turn at omega = 0 or h = 0, the tiniest turn kept, a negative step turns back", "[lab03][pts=1]") {
+  const Quat q0(Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, 2.0) / 3.0));
+  const Vec3 omega(0.3, -0.4, 1.2);
+  // Angle exactly 0, either way: q comes back unchanged (round-off at most, 1e-15).
+  CHECK((exponentialUpdate(q0, Vec3::Zero(), 0.5).coeffs() - q0.coeffs()).norm() <= 1e-15);
+  CHECK((exponentialUpdate(q0, omega, 0.0).coeffs() - q0.coeffs()).norm() <= 1e-15);
+  // A step back undoes a step forward: a rotation by -|omega| h about the same axis. Two
+  // quaternion products of unit quaternions: a few roundings of ~1e-16 each.
+  const Quat forward = exponentialUpdate(q0, omega, 0.25);
+  CHECK((exponentialUpdate(forward, omega, -0.25).coeffs() - q0.coeffs()).norm() < 1e-14);
+  // A turn of 1e-9 rad about z is (cos 5e-10, 0, 0, sin 5e-10) q0: two products of unit
+  // quaternions differ by round-off (~1e-16), while skipping the turn errs by 5e-10.
+  const Quat tiny = exponentialUpdate(q0, Vec3(0.0, 0.0, 2.0), 5e-10);
+  const Quat expected = Quat(std::cos(5e-10), 0.0, 0.0, std::sin(5e-10)) * q0;
+  CHECK((tiny.coeffs() - expected.coeffs()).norm() < 1e-15);
+}
+
 TEST_CASE("rigid: angular velocity depends on the rotation q stands for, not on its length", "[lab03][pts=1]") {
   const RigidBody body(uniform(1.0, 3.0), randomInertia());
   const Quat q(randomRotation());

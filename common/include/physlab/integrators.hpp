@@ -18,7 +18,7 @@ namespace physlab {
 /// The integrators of Lab 1, in the order the handout introduces them.
 enum class Method {
   ExplicitEuler,    ///< \f$X_{n+1} = X_n + h f(X_n)\f$; order 1, 1 evaluation
-  SymplecticEuler,  ///< \f$p_{n+1} = p_n + h \dot p(q_n,p_n)\f$, then \f$q_{n+1} = q_n + h \dot q(q_n,p_{n+1})\f$; order 1
+  SymplecticEuler,  ///< \f$p_{n+1} = p_n + h \dot p(q_n,p_n)\f$, then \f$q_{n+1} = q_n + h \dot q(q_n,p_{n+1})\f$; order 1, 1 evaluation (the drift reads \f$\dot q\f$, which is none)
   Midpoint,         ///< half Euler step, then a full step with the midpoint slope; order 2, 2 evaluations
   Trapezoid,        ///< Heun: average of the slopes at both ends of an Euler step; order 2, 2 evaluations
   RK4,              ///< classical Runge-Kutta; order 4, 4 evaluations

@@ -88,8 +88,10 @@ Vec3 springForce(const Spring& spring, const Vec3& xa, const Vec3& xb, const Vec
 /// \f$-[k_s u u^T + \frac{\max(0,\ k_s(|l| - r))}{|l|} P]\f$. Handout: Lab 2, section 2.
 SpringJacobian springJacobian(const Spring& spring, const Vec3& xa, const Vec3& xb,
                               const Vec3& va, const Vec3& vb, JacobianForm form);
-/// Penalty force of the ground on a particle at `x` moving with `v` [N] (see Ground).
-/// Handout: Lab 2, section 4.
+/// Penalty force of the ground on a particle at `x` moving with `v` [N] (see Ground): zero unless
+/// the particle is strictly below the plane (depth d > 0; a particle exactly at z = height only
+/// touches it), and zero whatever the depth while the ground is off (stiffness 0: its damper is
+/// off too). Handout: Lab 2, section 4.
 Vec3 groundForce(const Ground& ground, const Vec3& x, const Vec3& v);
 ///@}
 
