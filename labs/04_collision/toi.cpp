@@ -13,9 +13,9 @@ ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_
   // TODO(student): approachSpeedBound() along the relative velocity's direction gives |v_B - v_A| +
   //   |omega_A| rho_A + |omega_B| rho_B.
   // Sample the step finely enough that a thin shape cannot be skipped
-  // TODO(student): N = ceil(mu h / (innerRadius(A) + innerRadius(B))), clamped to [1, 4096]; test
-  //   overlap (distance().overlap at the advance()d poses) at 0 and at k h / N, counting every test
-  //   in queries.
+  // TODO(student): N = ceil(mu h / (innerRadius(A) + innerRadius(B))), clamped to [1, 4096], and 1
+  //   when mu h is 0 (two triangles have inner radii 0: 0 / 0); test overlap (distance().overlap at
+  //   the advance()d poses) at 0 and at k h / N, counting every test in queries.
   // Halve the bracket [lo, hi] (apart at lo, overlapping at hi) until it is short enough
   // TODO(student): while mu (hi - lo) > tolerance: test the midpoint; report lo (still apart).
   notImplemented("toiBisection", "Lab 4 handout, section 9", a, pose_a, motion_a, b, pose_b, motion_b, h, tolerance);

@@ -23,8 +23,8 @@ ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_
   const double mu = approachSpeedBound(a, motion_a, b, motion_b,
                                        relative.squaredNorm() > 0.0 ? Vec3(relative.normalized()) : Vec3::UnitX());
   // Sample the step finely enough that a thin shape cannot be skipped
-  const double spacing = innerRadius(a) + innerRadius(b);
-  const int samples = static_cast<int>(std::clamp(std::ceil(std::max(mu, 0.0) * h / spacing), 1.0, 4096.0));
+  const double spacing = innerRadius(a) + innerRadius(b), reach = std::max(mu, 0.0) * h;
+  const int samples = reach > 0.0 ? static_cast<int>(std::clamp(std::ceil(reach / spacing), 1.0, 4096.0)) : 1;
   if (overlapAt(0.0)) {
     result.hit = true;
     return result;

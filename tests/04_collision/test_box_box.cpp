@@ -274,6 +274,23 @@ TEST_CASE("clipping: a square cut by a plane keeps its inside part and the two c
   CHECK(crossings == 2);
   CHECK(clipPolygon(square, Vec3::UnitX(), -2.0, 7).count == 0);
   CHECK(clipPolygon(square, Vec3::UnitX(), 2.0, 7).count == 4);
+  // The kept part is closed (m . p <= o): a plane through an edge keeps that edge's corners,
+  // unchanged and once each, and adds no crossing where an edge only starts or ends on it.
+  const ContactPolygon on_right = clipPolygon(square, Vec3::UnitX(), 1.0, 7);  // the whole square
+  REQUIRE(on_right.count == 4);
+  for (int i = 0; i < 4; ++i) {
+    CHECK(on_right.points[i].id == square.points[i].id);
+    CHECK(on_right.points[i].position == square.points[i].position);
+  }
+  const ContactPolygon on_left = clipPolygon(square, Vec3::UnitX(), -1.0, 7);  // the edge x = -1
+  REQUIRE(on_left.count == 2);
+  for (int i = 0; i < 2; ++i) {
+    const std::uint32_t id = on_left.points[i].id;
+    REQUIRE((id == 1 || id == 4));  // the corners (-1, -1) and (-1, 1)
+    CHECK(on_left.points[i].position == square.points[id - 1].position);
+    CHECK(on_left.points[i].depth == square.points[id - 1].depth);
+  }
+  CHECK(on_left.points[0].id != on_left.points[1].id);
 }
 
 TEST_CASE("reduction: 4 of a polygon's points, the deepest first, spanning most of its area", "[lab04][pts=1]") {
@@ -306,6 +323,25 @@ TEST_CASE("reduction: 4 of a polygon's points, the deepest first, spanning most 
   const Manifold l = reduceContacts(Vec3::UnitZ(), lifted);
   REQUIRE(l.count == 4);
   for (int i = 0; i < 4; ++i) CHECK(l.points[i].id == m.points[i].id);
+  // At most 4 candidates, 4 included, are all kept in their order, even when they span no area
+  // that a choice of fewer would lose: a triangle with a deeper point inside it, and 4 points on
+  // one line.
+  ContactPolygon triangle;
+  triangle.add(Vec3(-1.0, -1.0, 0.0), 0.1, 1);
+  triangle.add(Vec3(1.0, -1.0, 0.0), 0.1, 2);
+  triangle.add(Vec3(uniform(-0.2, 0.2), uniform(-0.2, 0.2), 0.0), 0.3, 3);  // inside
+  triangle.add(Vec3(0.0, 1.0, 0.0), 0.1, 4);
+  ContactPolygon line;
+  for (int k = 0; k < 4; ++k) line.add(Vec3(uniform(-1.0, 1.0), 0.0, 0.0), uniform(0.0, 0.2), static_cast<std::uint32_t>(k + 1));
+  for (const ContactPolygon* few : {&triangle, &line}) {
+    const Manifold kept = reduceContacts(Vec3::UnitZ(), *few);
+    REQUIRE(kept.count == 4);
+    for (int i = 0; i < 4; ++i) {
+      CHECK(kept.points[i].id == few->points[i].id);
+      CHECK(kept.points[i].position == few->points[i].position);
+      CHECK(kept.points[i].depth == few->points[i].depth);
+    }
+  }
 }
 
 TEST_CASE("convex polyhedra: two boxes as polyhedra give the box-box normal and depth", "[lab04][pts=2]") {

@@ -203,6 +203,23 @@ TEST_CASE("uniform grid: the cell is twice the median longest edge", "[lab04][pt
   grid.findPairs(boxes, pairs);
   CHECK(grid.cellSize() == 1.0);
   CHECK_SAME_PAIRS(pairs, bruteForcePairs(boxes));
+  // An even count: the median is the upper middle edge, so exactly half the boxes being points
+  // does not yet give the fallback (it takes more than half).
+  const int half = randomCount(5, 100);
+  boxes.clear();
+  edges.clear();
+  for (int i = 0; i < 2 * half; ++i) {
+    const Vec3 c = randomVec3(3.0);
+    const double e = i % 2 == 0 ? 0.0 : uniform(0.1, 0.5);
+    boxes.push_back(boxAround(c, Vec3::Constant(0.5 * e)));
+    edges.push_back((boxes.back().max - boxes.back().min).maxCoeff());
+  }
+  std::sort(edges.begin(), edges.end());
+  grid.findPairs(boxes, pairs);
+  INFO(half << " points and " << half << " boxes");
+  CHECK(edges[edges.size() / 2] > 0.0);
+  CHECK(grid.cellSize() == 2.0 * edges[edges.size() / 2]);  // the same double, chosen and doubled
+  CHECK_SAME_PAIRS(pairs, bruteForcePairs(boxes));
 }
 
 TEST_CASE("BVH: same pairs as brute force on random scenes", "[lab04][pts=2]") {
@@ -240,34 +257,39 @@ TEST_CASE("BVH: refit after moves matches brute force", "[lab04][pts=2]") {
 }
 
 TEST_CASE("BVH: the median split builds a balanced pre-order tree", "[lab04][pts=1]") {
-  const int n = randomCount(10, 2000);
-  const std::vector<Aabb> boxes = randomScene(n, BoxSizes::WideRange);
-  Bvh bvh;
-  PairList pairs;
-  bvh.build(boxes, pairs);
-  // Halving from n until a leaf holds at most kLeafSize boxes: the depth of a median split.
-  int expected_depth = 1;
-  for (int size = n; size > Bvh::kLeafSize; size = (size + 1) / 2) ++expected_depth;
-  CHECK(bvh.depth() == expected_depth);
-  // Every box sits in exactly one leaf, and the leaves' boxes lie inside their bounds.
-  std::vector<int> seen(static_cast<std::size_t>(n), 0);
-  for (std::size_t k = 0; k < bvh.nodes().size(); ++k) {
-    const Bvh::Node& node = bvh.nodes()[k];
-    if (node.left >= 0) {
-      CHECK(node.left == static_cast<int>(k) + 1);  // pre-order: the left child follows its parent
-      continue;
+  // A random count, and on every run counts whose halvings end exactly at kLeafSize boxes (a
+  // full leaf), at kLeafSize itself (one leaf) and one more (the first split).
+  for (const int n : {randomCount(10, 2000), 8 * Bvh::kLeafSize, Bvh::kLeafSize, Bvh::kLeafSize + 1}) {
+    INFO(n << " boxes");
+    const std::vector<Aabb> boxes = randomScene(n, BoxSizes::WideRange);
+    Bvh bvh;
+    PairList pairs;
+    bvh.build(boxes, pairs);
+    CHECK_SAME_PAIRS(pairs, bruteForcePairs(boxes));
+    // Halving from n until a leaf holds at most kLeafSize boxes: the depth of a median split.
+    int expected_depth = 1;
+    for (int size = n; size > Bvh::kLeafSize; size = (size + 1) / 2) ++expected_depth;
+    CHECK(bvh.depth() == expected_depth);
+    // Every box sits in exactly one leaf, and the leaves' boxes lie inside their bounds.
+    std::vector<int> seen(static_cast<std::size_t>(n), 0);
+    for (std::size_t k = 0; k < bvh.nodes().size(); ++k) {
+      const Bvh::Node& node = bvh.nodes()[k];
+      if (node.left >= 0) {
+        CHECK(node.left == static_cast<int>(k) + 1);  // pre-order: the left child follows its parent
+        continue;
+      }
+      CHECK(node.count >= 1);
+      CHECK(node.count <= Bvh::kLeafSize);
+      for (int p = node.first; p < node.first + node.count; ++p) {
+        const int box = bvh.order()[static_cast<std::size_t>(p)];
+        ++seen[static_cast<std::size_t>(box)];
+        const Aabb& b = boxes[static_cast<std::size_t>(box)];
+        CHECK((node.bounds.min.array() <= b.min.array()).all());
+        CHECK((node.bounds.max.array() >= b.max.array()).all());
+      }
     }
-    CHECK(node.count >= 1);
-    CHECK(node.count <= Bvh::kLeafSize);
-    for (int p = node.first; p < node.first + node.count; ++p) {
-      const int box = bvh.order()[static_cast<std::size_t>(p)];
-      ++seen[static_cast<std::size_t>(box)];
-      const Aabb& b = boxes[static_cast<std::size_t>(box)];
-      CHECK((node.bounds.min.array() <= b.min.array()).all());
-      CHECK((node.bounds.max.array() >= b.max.array()).all());
-    }
+    CHECK(std::count(seen.begin(), seen.end(), 1) == n);
   }
-  CHECK(std::count(seen.begin(), seen.end(), 1) == n);
 }
 
 TEST_CASE("k-d tree: same pairs as brute force on random scenes", "[lab04][pts=2]") {
@@ -278,6 +300,28 @@ TEST_CASE("k-d tree: same pairs as brute force on random scenes", "[lab04][pts=2
 TEST_CASE("k-d tree: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1]") {
   KdTree tree;
   checkDegenerateScenes(tree);
+}
+
+TEST_CASE("k-d tree: a node of at most kLeafSize boxes is one leaf, and leafCount() counts the leaves", "[lab04][pts=1]") {
+  // Boxes in a row along x, well apart: kLeafSize of them are one leaf (the root); one more and
+  // the root splits at the median centre into two children that are both leaves (the median box
+  // goes to both: kLeafSize / 2 + 1 boxes each).
+  KdTree tree;
+  for (const int n : {1, KdTree::kLeafSize, KdTree::kLeafSize + 1}) {
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < n; ++i) boxes.push_back(boxAround(Vec3(3.0 * i, uniform(-1, 1), uniform(-1, 1)), Vec3::Constant(0.5)));
+    PairList pairs;
+    tree.findPairs(boxes, pairs);
+    INFO(n << " boxes in a row");
+    CHECK(pairs.empty());
+    CHECK(tree.leafCount() == (n <= KdTree::kLeafSize ? 1 : 2));
+  }
+  // A dense random scene: every leaf the query visits is counted, and there are more than one.
+  const std::vector<Aabb> boxes = randomScene(randomCount(200, 2000), BoxSizes::Uniform);
+  PairList pairs;
+  tree.findPairs(boxes, pairs);
+  CHECK_SAME_PAIRS(pairs, bruteForcePairs(boxes));
+  CHECK(tree.leafCount() > 1);
 }
 
 TEST_CASE("broad phase: far fewer overlap tests than brute force on a sparse scene", "[lab04][pts=2]") {

@@ -140,4 +140,13 @@ TEST_CASE("gjk: overlapping shapes are reported as overlapping", "[lab04][pts=1]
       CHECK(d.distance == 0.0);  // documented: 0 when overlapping, never a negative depth
     }
   }
+  // Touching counts as overlapping: two spheres exactly r_A + r_B apart (binary fractions, so
+  // the core distance is exactly the sum of the margins).
+  const Vec3 u = Vec3::Unit(static_cast<Index>(uniform(0.0, 2.999)));
+  Pose pa, pb;
+  pa.x = 0.75 * u;
+  const DistanceResult touch = gjkDistance(Sphere(0.25), pa, Sphere(0.5), pb);
+  INFO("spheres touching");
+  CHECK(touch.overlap);
+  CHECK(touch.distance == 0.0);
 }

@@ -1,6 +1,8 @@
 // Lab 4 graded tests, narrow phase: properties every pair must have (no contact when apart,
 // symmetry under swapping, invariance under rigid motions, points inside both shapes), closed
 // forms for spheres and resting boxes, and the triangle-triangle test.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -195,20 +197,89 @@ TEST_CASE("narrow phase: sphere pairs give the closed-form depth, normal and poi
 }
 
 TEST_CASE("narrow phase: a sphere whose centre is inside a box leaves through the nearest face", "[lab04][pts=1]") {
+  // Every face in turn, on every run: the nearest face is on the - side as often as on the + side.
   const Box box(Vec3(0.5, 0.7, 0.9));
   const Pose pbox = randomPose(1.0);
-  const double r = uniform(0.1, 0.3), inside = uniform(0.05, 0.2);
-  Pose pa;
-  pa.x = pbox.toWorld(Vec3(uniform(-0.2, 0.2), 0.7 - inside, uniform(-0.2, 0.2)));  // nearest: +y face
-  const Manifold m = collideSphereBox(Sphere(r), pa, box, pbox);
-  REQUIRE(m.count == 1);
-  CHECK(m.points[0].depth == Approx(r + inside).margin(1e-12));  // round-off only
-  CHECK((m.normal - pbox.q * Vec3::UnitY()).norm() < 1e-12);
-  // Midway between the sphere's deepest point c - r e_y and the face point above the centre,
-  // (c_x, 0.7, c_z), in the box frame; round-off of the pose only.
-  const Vec3 c = pbox.toBody(pa.x);
-  const Vec3 expected(c.x(), 0.5 * (c.y() - r + 0.7), c.z());
-  CHECK((pbox.toBody(m.points[0].position) - expected).norm() < 1e-12);
+  for (int face = 0; face < 6; ++face) {
+    const int i = face / 2;
+    const double sign = face % 2 == 0 ? 1.0 : -1.0;
+    const double r = uniform(0.1, 0.3), inside = uniform(0.05, 0.2);
+    // The centre `inside` from face (i, sign), within 0.2 of the middle on the other axes, which
+    // leaves them at least 0.3 of room: face (i, sign) is the nearest.
+    Vec3 c(uniform(-0.2, 0.2), uniform(-0.2, 0.2), uniform(-0.2, 0.2));
+    c[i] = sign * (box.half_extents[i] - inside);
+    Pose pa;
+    pa.x = pbox.toWorld(c);
+    const Manifold m = collideSphereBox(Sphere(r), pa, box, pbox);
+    INFO("face " << (sign > 0 ? "+" : "-") << "xyz"[i]);
+    REQUIRE(m.count == 1);
+    CHECK(m.points[0].depth == Approx(r + inside).margin(1e-12));  // round-off only
+    const Vec3 n_body = sign * Vec3::Unit(i);
+    CHECK((m.normal - pbox.q * n_body).norm() < 1e-12);
+    // Midway between the sphere's deepest point c - r n and the face point beyond the centre
+    // (c with its i-th coordinate on the face), in the box frame; round-off of the pose only.
+    const Vec3 centre = pbox.toBody(pa.x);
+    Vec3 on_face = centre;
+    on_face[i] = sign * box.half_extents[i];
+    const Vec3 expected = 0.5 * (centre - r * n_body + on_face);
+    CHECK((pbox.toBody(m.points[0].position) - expected).norm() < 1e-12);
+  }
+}
+
+TEST_CASE("narrow phase: shapes touching at depth exactly 0 have contacts of depth 0", "[lab04][pts=1]") {
+  // Touching is not apart: each routine must report the contact, with depth 0. Every number
+  // below is a binary fraction and the poses are unrotated, so the depths are exactly 0.
+  const Vec3 shift(uniform(-0.25, 0.25), uniform(-0.25, 0.25), 0.0);  // slides along the contact plane
+  auto at = [](const Vec3& x) {
+    Pose p;
+    p.x = x;
+    return p;
+  };
+  auto touching = [](const Manifold& m, int count, const Vec3& normal) {
+    REQUIRE(m.count == count);
+    CHECK(m.normal == normal);  // a coordinate axis, computed from exact differences
+    for (int k = 0; k < m.count; ++k) CHECK(m.points[k].depth == 0.0);
+  };
+  {
+    INFO("sphere on sphere");
+    const Manifold m = collideSphereSphere(Sphere(0.25), at(Vec3(0.0, 0.0, 0.75)), Sphere(0.5), at(Vec3::Zero()));
+    touching(m, 1, Vec3::UnitZ());
+    CHECK(m.points[0].position == Vec3(0.0, 0.0, 0.5));  // both surface points
+  }
+  {
+    INFO("sphere on a plane");
+    const Manifold m = collideSpherePlane(Sphere(0.25), at(Vec3(0.0, 0.0, 0.75) + shift), Plane(Vec3::UnitZ(), 0.5));
+    touching(m, 1, Vec3::UnitZ());
+    CHECK((m.points[0].position - (Vec3(0.0, 0.0, 0.5) + shift)).norm() < 1e-15);  // one rounding of the shift
+  }
+  {
+    INFO("sphere on a box face");
+    const Manifold m = collideSphereBox(Sphere(0.25), at(Vec3(0.0, 0.0, 0.75) + shift), Box(Vec3(0.5, 0.5, 0.5)),
+                                        at(Vec3::Zero()));
+    touching(m, 1, Vec3::UnitZ());
+  }
+  {
+    INFO("sphere beside a capsule's core");
+    const Manifold m = collideCapsuleSphere(Capsule(0.25, 0.5), at(Vec3::Zero()), Sphere(0.5), at(Vec3(-0.75, 0.0, 0.125)));
+    touching(m, 1, Vec3::UnitX());
+  }
+  {
+    INFO("box on a plane");
+    const Manifold m = collideBoxPlane(Box(Vec3(0.5, 0.25, 0.125)), at(Vec3(0.0, 0.0, 0.125) + shift), Plane(Vec3::UnitZ(), 0.0));
+    touching(m, 4, Vec3::UnitZ());
+  }
+  {
+    INFO("box on a box");
+    const Manifold m = collideBoxBox(Box(Vec3(0.5, 0.5, 0.25)), at(Vec3(0.0, 0.0, 0.75) + shift), Box(Vec3(1.0, 1.0, 0.5)),
+                                     at(Vec3::Zero()));
+    touching(m, 4, Vec3::UnitZ());
+  }
+  {
+    INFO("box on a box, as convex polyhedra");
+    const Manifold m = collideConvexConvex(ConvexPolyhedron::box(Vec3(0.5, 0.5, 0.25)), at(Vec3(0.0, 0.0, 0.75) + shift),
+                                           ConvexPolyhedron::box(Vec3(1.0, 1.0, 0.5)), at(Vec3::Zero()));
+    touching(m, 4, Vec3::UnitZ());
+  }
 }
 
 TEST_CASE("narrow phase: spheres with coincident centres separate along +z", "[lab04][pts=1]") {
@@ -250,6 +321,67 @@ TEST_CASE("narrow phase: crossed capsules touch at one point between their cores
     const Vec3 expected(px, 0.0, 0.5 * (H - a.radius + b.radius));
     CHECK((frame.toBody(m.points[0].position) - expected).norm() < 1e-9);
   }
+}
+
+TEST_CASE("narrow phase: parallel capsules touch at both ends of their overlap, either way round and overhanging", "[lab04][pts=1]") {
+  // Cores along z, side by side along x, overlapping by 1/16 m; one core longer than the other,
+  // so the longer one overhangs at both ends, and B either way up (a half turn about x swaps its
+  // ends). The overlap of the cores is the shorter core: the contacts are at its two ends.
+  const double overlap = 0.0625;
+  for (const bool a_longer : {false, true}) {
+    for (const bool b_flipped : {false, true}) {
+      const Capsule a(0.25, a_longer ? 1.0 : 0.5), b(0.125, a_longer ? 0.5 : 1.0);
+      Pose pa, pb;
+      pa.x = Vec3(a.radius + b.radius - overlap, 0.0, 0.125);
+      if (b_flipped) pb.q = Quat(0.0, 1.0, 0.0, 0.0);  // a half turn about x: z -> -z exactly
+      const Manifold m = collideCapsuleCapsule(a, pa, b, pb);
+      INFO((a_longer ? "A" : "B") << " longer, B " << (b_flipped ? "upside down" : "upright"));
+      REQUIRE(m.count == 2);
+      CHECK(m.normal == Vec3::UnitX());  // exact differences of the unrotated cores
+      CHECK(m.points[0].id != m.points[1].id);
+      // The ends of the shorter core (A's runs from 0.125 - h_A to 0.125 + h_A, B's from -h_B to h_B);
+      // midway between A's surface at x = overlap and B's at x = r_B: binary fractions, exact.
+      const double lo = a_longer ? -b.half_height : 0.125 - a.half_height;
+      const double hi = a_longer ? b.half_height : 0.125 + a.half_height;
+      std::vector<double> heights;
+      for (int k = 0; k < 2; ++k) {
+        CHECK(m.points[k].depth == Approx(overlap).margin(1e-15));  // exact up to one rounding
+        CHECK(m.points[k].position.x() == Approx(0.5 * (overlap + b.radius)).margin(1e-15));
+        heights.push_back(m.points[k].position.z());
+      }
+      CHECK(std::min(heights[0], heights[1]) == Approx(lo).margin(1e-15));
+      CHECK(std::max(heights[0], heights[1]) == Approx(hi).margin(1e-15));
+    }
+  }
+}
+
+TEST_CASE("closest points of segments: a segment reduced to a point", "[lab04][pts=1]") {
+  // The parameters must lie in [0, 1] and give the closest points; a single point has one
+  // parameter that does not matter, but it must still be a number in [0, 1].
+  const Vec3 p(-1.0, 0.0, 0.0), q(1.0, 0.0, 0.0);  // a segment along x
+  struct Case {
+    const char* what;
+    Vec3 point;
+    double t;  // parameter of the segment's closest point
+  };
+  const Case cases[] = {{"before the segment's start", Vec3(-3.0, 1.0, 0.0), 0.0},
+                        {"beside its middle", Vec3(0.5, 2.0, -1.0), 0.75},
+                        {"past its end", Vec3(3.0, -1.0, 2.0), 1.0}};
+  auto in01 = [](double s) { return s >= 0.0 && s <= 1.0; };  // false for NaN
+  for (const Case& c : cases) {
+    INFO("a point " << c.what);
+    // The point first, then second: the other parameter is the segment's, exact in binary.
+    const std::array<double, 2> first = closestSegmentParameters(c.point, c.point, p, q);
+    CHECK(in01(first[0]));
+    CHECK(first[1] == c.t);
+    const std::array<double, 2> second = closestSegmentParameters(p, q, c.point, c.point);
+    CHECK(second[0] == c.t);
+    CHECK(in01(second[1]));
+  }
+  const std::array<double, 2> points = closestSegmentParameters(p, p, q, q);
+  INFO("two points");
+  CHECK(in01(points[0]));
+  CHECK(in01(points[1]));
 }
 
 TEST_CASE("narrow phase: a box resting on a plane touches at its 4 bottom corners", "[lab04][pts=2]") {

@@ -113,6 +113,92 @@ TEST_CASE("toi: a step or tolerance that is not positive is refused by name", "[
   }
 }
 
+TEST_CASE("toi: a pair already overlapping at the start is hit at time 0, after one query", "[lab04][pts=1]") {
+  // Two spheres overlapping at t = 0 and flying apart fast enough to separate within the step:
+  // the first contact is at 0, and the one test (or distance query) at t = 0 shows it.
+  const double h = 1.0 / 60, tol = 1e-6;
+  const double ra = uniform(0.1, 0.5), rb = uniform(0.1, 0.5), overlap = uniform(0.01, 0.05);
+  const Vec3 u = randomUnit();
+  Pose pa, pb;
+  pb.x = randomVec3(2.0);
+  pa.x = pb.x + (ra + rb - overlap) * u;
+  const Motion ma{uniform(6.0, 10.0) * u, Vec3::Zero()}, mb{-uniform(6.0, 10.0) * u, Vec3::Zero()};
+  // Apart by (12 to 20 m/s) h - overlap >= 0.15 m at the end of the step.
+  REQUIRE_FALSE(distance(Sphere(ra), advance(pa, ma, h), Sphere(rb), advance(pb, mb, h)).overlap);
+  for (int k = 0; k < 2; ++k) {
+    const ToiResult r = kMethods[k](Sphere(ra), pa, ma, Sphere(rb), pb, mb, h, tol);
+    INFO(kMethodNames[k]);
+    CHECK(r.hit);
+    CHECK(r.time == 0.0);
+    CHECK(r.queries == 1);
+  }
+}
+
+TEST_CASE("toi: a contact exactly at the end of the step is a hit", "[lab04][pts=1]") {
+  // Spheres of radius 1/4, 1/4 m apart, closing at 2 m/s: they touch at t = 1/8 s = h exactly
+  // (binary fractions: the positions advance() gives at 1/8 s are exact). The step is [0, h].
+  const double h = 0.125, tol = 1e-6;
+  const Vec3 u = Vec3::Unit(static_cast<Index>(uniform(0.0, 2.999)));
+  Pose pa, pb;
+  pa.x = 0.75 * u;
+  const Motion ma{-2.0 * u, Vec3::Zero()};
+  auto gap = [&](double t) { return 0.25 - 2.0 * t; };
+  for (int k = 0; k < 2; ++k) {
+    const ToiResult r = kMethods[k](Sphere(0.25), pa, ma, Sphere(0.25), pb, Motion{}, h, tol);
+    INFO(kMethodNames[k]);
+    REQUIRE(r.hit);
+    CHECK(r.time <= h);
+    CHECK(gap(r.time) >= -1e-15);       // apart or touching, to one rounding
+    CHECK(gap(r.time) <= tol + 1e-15);  // by at most the tolerance
+  }
+}
+
+TEST_CASE("toi: queries counts every overlap test and distance query made", "[lab04][pts=1]") {
+  const double tol = 1e-6;
+  // At rest, apart: the speed bound is 0, so bisection samples the step once (N = 1, tests at 0
+  // and h) and advancement stops after its first distance query (no approach at all).
+  {
+    Pose pa;
+    pa.x = Vec3(uniform(1.0, 2.0), 0.0, 0.0);
+    for (int k = 0; k < 2; ++k) {
+      const ToiResult r = kMethods[k](Sphere(0.25), pa, Motion{}, Sphere(0.25), Pose{}, Motion{}, 0.1, tol);
+      INFO(kMethodNames[k] << " at rest");
+      CHECK_FALSE(r.hit);
+      CHECK(r.queries == (k == 0 ? 2 : 1));
+    }
+    // Two triangles have inner radii 0 (no sampling bound), yet at rest nothing approaches:
+    // still one sample, not 0 / 0.
+    const Triangle t1(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)), t2(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0, 1));
+    Pose p2;
+    p2.x = Vec3(uniform(-1.0, 1.0), uniform(-1.0, 1.0), uniform(0.5, 1.0));  // above t1's plane
+    for (int k = 0; k < 2; ++k) {
+      const ToiResult r = kMethods[k](t1, Pose{}, Motion{}, t2, p2, Motion{}, 0.1, tol);
+      INFO(kMethodNames[k] << ", triangles at rest");
+      CHECK_FALSE(r.hit);
+      CHECK(r.queries == (k == 0 ? 2 : 1));
+    }
+  }
+  // Head on: radii 1/4, gap g in [0.1, 0.25] m, closing at 3 m/s, h = 0.1 s. Bisection: mu h =
+  // 0.3 m is less than the inner radii (0.5 m), so N = 1; the test at 0 is apart and the one at h
+  // overlaps (the gap would be g - 0.3 < 0); then m halvings of [0, h], the fewest with
+  // 3 h / 2^m <= tol. Advancement: the first advance, g / 3, lands on the contact, where the
+  // second query finds the gap (0, to round-off) within the tolerance.
+  {
+    const double g = uniform(0.1, 0.25), h = 0.1;
+    Pose pa;
+    pa.x = Vec3(0.5 + g, 0.0, 0.0);
+    const Motion ma{Vec3(-3.0, 0.0, 0.0), Vec3::Zero()};
+    int halvings = 0;
+    while (3.0 * h / std::pow(2.0, halvings) > tol) ++halvings;  // 19: 5.7e-7 <= 1e-6 < 1.1e-6
+    const ToiResult bis = toiBisection(Sphere(0.25), pa, ma, Sphere(0.25), Pose{}, Motion{}, h, tol);
+    const ToiResult ca = toiConservativeAdvancement(Sphere(0.25), pa, ma, Sphere(0.25), Pose{}, Motion{}, h, tol);
+    INFO("head on, gap " << g << " m");
+    REQUIRE((bis.hit && ca.hit));
+    CHECK(bis.queries == 2 + halvings);
+    CHECK(ca.queries == 2);
+  }
+}
+
 TEST_CASE("toi: a spinning box falling on a plane is caught at its first touch", "[lab04][pts=2]") {
   const double h = 0.1, tol = 1e-6;
   const Box box(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));

@@ -151,8 +151,9 @@ class SweepAndPrune final : public BroadPhase {
 /// space, only those a box covers are ever touched).
 ///
 /// Cell size: h = 2 x the median over the boxes of their longest edge, so that a typical box
-/// covers at most 2 cells per axis (8 in all); the median ignores a few huge boxes. If that is 0
-/// (half the boxes or more are points), h = 1 m. A box that would cover more than kMaxCellsPerAxis cells
+/// covers at most 2 cells per axis (8 in all); the median ignores a few huge boxes. The median of
+/// n edges is the one at index n / 2 (integer division) in increasing order, the upper of the two
+/// middle ones when n is even. If that is 0 (more than half the boxes are points), h = 1 m. A box that would cover more than kMaxCellsPerAxis cells
 /// along some axis is "oversized": it skips the grid and is tested against every other box.
 /// Each pair is reported once, by the cell that holds the lower corner of the pair's
 /// intersection max(min_a, min_b), which lies in a cell both boxes cover.

@@ -240,7 +240,9 @@ ContactPolygon clipPolygon(const ContactPolygon& polygon, const Vec3& plane_norm
 /// At most 4 of the candidates, chosen to keep the contact area: the deepest point, the point
 /// farthest from it, the point farthest from the line through those two, and the point outside
 /// that triangle that adds the most area to it (distances and areas measured in the plane normal
-/// to `normal`), in this order. Points are copied unchanged. Handout: Lab 4, section 5.
+/// to `normal`), in this order. Points are copied unchanged. With at most 4 candidates (4
+/// included) every candidate is kept, in its order, even when they span no area. Handout: Lab 4,
+/// section 5.
 Manifold reduceContacts(const Vec3& normal, const ContactPolygon& candidates);
 
 /// A face axis wins over an edge axis unless the edge axis's overlap is smaller by more than this
@@ -320,17 +322,21 @@ double approachSpeedBound(const Shape& a, const Motion& motion_a, const Shape& b
                           const Vec3& n);
 
 /// Bisection on the overlap test (distance().overlap). The step is first sampled at N + 1 evenly
-/// spaced times, with N chosen so that no point approaches by more than the sum of the shapes'
-/// innerRadius() between samples (so a fast body cannot pass through a thin wall unseen; at most
-/// 4096 samples); the
-/// first sample that overlaps brackets the contact with the previous one, and the bracket is
-/// halved until the approach over it is at most `tolerance`. Handout: Lab 4, section 9.
+/// spaced times 0, h/N, ..., h, with N the fewest samples such that no point approaches by more
+/// than the sum of the shapes' innerRadius() between samples (so a fast body cannot pass through
+/// a thin wall unseen): \f$N = \lceil \mu h / (r_{in,A} + r_{in,B}) \rceil\f$ with \f$\mu\f$ the
+/// approachSpeedBound() along the relative velocity, clamped to [1, 4096]. A pair overlapping at
+/// t = 0 is a hit at time 0; otherwise the first sample that overlaps brackets the contact with
+/// the previous one, and the bracket is halved until the approach over it, \f$\mu\f$ times its
+/// length, is at most `tolerance`. Every overlap test counts in `queries`. Handout: Lab 4,
+/// section 9.
 ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_a, const Shape& b,
                        const Pose& pose_b, const Motion& motion_b, double h, double tolerance);
 /// Conservative advancement (Mirtich): from the distance \f$d\f$ and closest-point direction
 /// \f$\hat n\f$ at time t, no contact can happen before \f$t + d / \mu\f$ with \f$\mu\f$ the
 /// approachSpeedBound(); advance to it and repeat until \f$d \le\f$ `tolerance` (hit) or past h
-/// (none). Handout: Lab 4, section 9.
+/// (none; a time exactly h is still in the step). A pair overlapping at t = 0 is a hit at time 0.
+/// Every distance query counts in `queries`, the last one included. Handout: Lab 4, section 9.
 ToiResult toiConservativeAdvancement(const Shape& a, const Pose& pose_a, const Motion& motion_a, const Shape& b,
                                      const Pose& pose_b, const Motion& motion_b, double h, double tolerance);
 ///@}
