@@ -1,6 +1,7 @@
 // Lab 5 graded tests of one impulse: the particle-plane response, the rigid impulse magnitude j
 // against the lecture's closed form, and what applying it conserves, reverses and dissipates.
 #include <cmath>
+#include <limits>
 
 #include "impulse_support.hpp"
 
@@ -18,6 +19,12 @@ TEST_CASE("particle-plane: the normal velocity reverses and shrinks by epsilon, 
   CHECK((v_plus - v_plus.dot(n) * n - (v - v.dot(n) * n)).norm() <= 1e-12 * v.norm());
   // A particle leaving the plane is left alone: exactly.
   CHECK(particlePlaneResponse(m, -v, n, epsilon) == -v);
+  // Both ends of epsilon's range [0, 1]: a dead stop along n and a perfect bounce (round-off as above)
+  CHECK(std::abs(particlePlaneResponse(m, v, n, 0.0).dot(n)) <= 1e-12 * v.norm());
+  CHECK(std::abs(particlePlaneResponse(m, v, n, 1.0).dot(n) + v.dot(n)) <= 1e-12 * v.norm());
+  // Grazing, v . n = 0 exactly (in the plane z = 0 with n = z): not an approach, left alone exactly
+  const Vec3 grazing(v.x(), v.y(), 0.0);
+  CHECK(particlePlaneResponse(m, grazing, Vec3::UnitZ(), epsilon) == grazing);
 }
 
 TEST_CASE("rigid impulse: the world inverse inertia is R I_body^-1 R^T", "[lab05][pts=1]") {
@@ -26,6 +33,14 @@ TEST_CASE("rigid impulse: the world inverse inertia is R I_body^-1 R^T", "[lab05
   const Mat3 R = q.normalized().toRotationMatrix();
   // Two 3x3 products evaluated in another order: round-off only.
   CHECK(inverseInertiaWorld(I_body.inverse(), q).isApprox(R * I_body.inverse() * R.transpose(), 1e-12));
+  // By hand, on every run: diag(1, 3, 5) turned by 45 degrees about z (q of length 2) is
+  // [[2, -1, 0], [-1, 2, 0], [0, 0, 5]]; R^T I^-1 R would flip the off-diagonal sign.
+  const double half = std::acos(-1.0) / 8.0;
+  const Quat q45(2.0 * std::cos(half), 0.0, 0.0, 2.0 * std::sin(half));
+  Mat3 expected;
+  expected << 2.0, -1.0, 0.0, -1.0, 2.0, 0.0, 0.0, 0.0, 5.0;
+  // A rotation matrix from cos and sin of 45 degrees: round-off of the unit entries only.
+  CHECK((inverseInertiaWorld(Vec3(1.0, 3.0, 5.0).asDiagonal(), q45) - expected).norm() <= 1e-14);
 }
 
 TEST_CASE("rigid impulse: j equals the lecture's closed form", "[lab05][pts=2]") {
@@ -116,6 +131,15 @@ TEST_CASE("friction: below mu j the contact sticks, above it slides with |j_t| =
   // A vector scaled to a given length: round-off only.
   CHECK(J_slide.norm() == Approx(j_max).epsilon(1e-12));
   CHECK(J_slide.dot(v_t) == Approx(-j_max * v_t.norm()).epsilon(1e-12));
+  // A bound of 0 (mu = 0 or j = 0) leaves no friction at all, sliding or not: exactly zero.
+  CHECK(frictionImpulse(A, ground, p, n, 0.0) == Vec3::Zero());
+  // Not sliding: falling straight down without spin, v_t = v - (v . n) n is exactly zero, so there is
+  // no direction t; the contract's answer is exactly zero, whatever the bound.
+  ContactBody falling = A;
+  falling.v = Vec3(0.0, 0.0, uniform(-3.0, -0.1));
+  falling.omega = Vec3::Zero();
+  CHECK(frictionImpulse(falling, ground, p, n, 1e6) == Vec3::Zero());
+  CHECK(frictionImpulse(falling, ground, p, n, std::numeric_limits<double>::infinity()) == Vec3::Zero());
 }
 
 TEST_CASE("friction: the impulse opposes the tangential slip, stopping it along t or of length j_max", "[lab05][pts=2]") {
@@ -153,4 +177,11 @@ TEST_CASE("penalty: the force is max(0, k depth - d v_rel) along n, never pullin
   // Separating fast: the damper would pull, so there is no force at all (exactly)
   const double fast = uniform(1.1, 3.0) * spring / d;
   CHECK(penaltyForce(depth, fast, n, k, d) == Vec3::Zero());
+  // Just touching, depth exactly 0: the damper alone pushes an approaching point (round-off of one
+  // product) and nothing acts on a leaving one (exactly)
+  CHECK((penaltyForce(0.0, approaching, n, k, d) + d * approaching * n).norm() <= 1e-12 * d * -approaching);
+  CHECK(penaltyForce(0.0, slow, n, k, d) == Vec3::Zero());
+  // No damper, d = 0 (Settings' default): the spring alone, whatever the velocity (round-off only)
+  CHECK((penaltyForce(depth, approaching, n, k, 0.0) - spring * n).norm() <= 1e-12 * spring);
+  CHECK((penaltyForce(depth, fast, n, k, 0.0) - spring * n).norm() <= 1e-12 * spring);
 }

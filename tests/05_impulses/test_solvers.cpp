@@ -343,21 +343,27 @@ TEST_CASE("simultaneous impulses: the warm start and the accumulated j, j_t acco
     c.j = uniform(0.0, 0.5) * s.m;
     c.j_t = uniform(0.0, 1.0) * mu * c.j * c.n.cross(randomVec3(1.0)).normalized();
   }
-  const ContactBody box0 = s.bodies[0];
-  Settings settings;
-  settings.method = ResponseMethod::Simultaneous;
-  settings.iterations = static_cast<int>(uniform(1, 60));  // (friction may keep it sweeping)
-  const std::vector<Contact> warm = s.contacts;
-  const int sweeps = solveSimultaneous(s.bodies, s.contacts, settings);
-  INFO(s.contacts.size() << " points, " << sweeps << " sweeps");
-  CHECK(sweeps >= 1);
-  CHECK(sweeps <= settings.iterations);
-  // Random warm impulses are not the answer: the sweeps changed them (a solver applying only the
-  // warm start would balance trivially)
-  double changed = 0.0;
-  for (std::size_t k = 0; k < warm.size(); ++k) changed += std::abs(s.contacts[k].j - warm[k].j);
-  CHECK(changed > 0.0);
-  checkImpulseBalance(box0, s.bodies[0], s.m, s.I, s.contacts);
+  const BoxOnGround start = s;
+  const int iterations = static_cast<int>(uniform(1, 60));  // (friction may keep it sweeping)
+  // The solver applies the impulses the contacts arrive with whatever Settings::warm_start says
+  // (world.hpp: the World, not the solver, clears them when it is off): the same answer both ways
+  for (const bool warm_start : {true, false}) {
+    s = start;
+    Settings settings;
+    settings.method = ResponseMethod::Simultaneous;
+    settings.iterations = iterations;
+    settings.warm_start = warm_start;
+    const int sweeps = solveSimultaneous(s.bodies, s.contacts, settings);
+    INFO(s.contacts.size() << " points, " << sweeps << " sweeps, warm_start " << warm_start);
+    CHECK(sweeps >= 1);
+    CHECK(sweeps <= settings.iterations);
+    // Random warm impulses are not the answer: the sweeps changed them (a solver applying only the
+    // warm start would balance trivially)
+    double changed = 0.0;
+    for (std::size_t k = 0; k < start.contacts.size(); ++k) changed += std::abs(s.contacts[k].j - start.contacts[k].j);
+    CHECK(changed > 0.0);
+    checkImpulseBalance(start.bodies[0], s.bodies[0], s.m, s.I, s.contacts);
+  }
 }
 
 TEST_CASE("simultaneous impulses: frictionless, a point that keeps an impulse ends at v_rel = 0 (complementarity)", "[lab05][pts=1]") {
@@ -605,6 +611,13 @@ TEST_CASE("simultaneous impulses: the stopping rule measures velocity changes, f
   settings.tolerance = 2.0 * (1.0 + epsilon) * std::abs(vRel(heavy));
   INFO("K " << oracleK(heavy.A, heavy.B, heavy.p, heavy.n) << " 1/kg, tolerance " << settings.tolerance << " m/s");
   CHECK(solveSimultaneous(bodies, contacts, settings) == 1);
+  // Stopping does not drop the last sweep's correction: the bodies received the reported j and the
+  // point leaves at -epsilon v_rel- (v_rel is linear in j: round-off of the speeds, ~10 m/s).
+  const double before = vRel(heavy);
+  CHECK(contacts[0].j == Approx(-(1.0 + epsilon) * before / oracleK(heavy.A, heavy.B, heavy.p, heavy.n)).epsilon(1e-10));
+  heavy.A = bodies[0];
+  heavy.B = bodies[1];
+  CHECK(vRel(heavy) == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
 
   // A sphere sliding on the ground, warm-started with exactly its normal impulse and no friction:
   // the first sweep's normal correction is zero, its friction correction stops the slip (mu = 10
@@ -709,4 +722,131 @@ TEST_CASE("simultaneous impulses: the share counts each moving body's points, as
   // (a sphere touching at its lowest point: K = 1/m, no rotation), round-off of ~10 m/s.
   CHECK(lone.v.z() == Approx(-contacts[5].epsilon * lone0.v.z()).margin(1e-12 * (1.0 + std::abs(lone0.v.z()))));
   CHECK(bodies[0].v == Vec3::Zero());  // the ground stays put (exactly)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fixed configurations beside the random ones, on every run: the documented ends of the settings'
+// ranges, points with nothing to do, and a sliding sphere worked out by hand with the moving body
+// as A and as B.
+
+namespace {
+
+constexpr double kSphereMass = 2.0, kSphereRadius = 0.2;
+
+// A solid sphere of 2 kg and radius 0.2 m, without spin, touching the fixed ground at its lowest
+// point, the origin. The sphere is A above the ground (n = +z), or with `ground_as_a` the ground
+// is A and the sphere B (n = -z). Either way v_rel = n . (pdot_A - pdot_B) is exactly v_z.
+struct FixedSphere {
+  std::vector<ContactBody> bodies;
+  std::vector<Contact> contacts;
+  int sphere = 0;  // the sphere's index in bodies
+};
+
+FixedSphere fixedSphereOnGround(const Vec3& v, double epsilon, double mu, bool ground_as_a) {
+  ContactBody sphere, ground;
+  sphere.x = Vec3(0.0, 0.0, kSphereRadius);
+  sphere.v = v;
+  sphere.inv_mass = 1.0 / kSphereMass;
+  sphere.I_inv_world = Mat3::Identity() / (0.4 * kSphereMass * kSphereRadius * kSphereRadius);
+  FixedSphere s;
+  s.sphere = ground_as_a ? 1 : 0;
+  s.bodies = ground_as_a ? std::vector<ContactBody>{ground, sphere} : std::vector<ContactBody>{sphere, ground};
+  Contact c;
+  c.a = 0;
+  c.b = 1;
+  c.p = Vec3::Zero();
+  c.n = ground_as_a ? Vec3(-Vec3::UnitZ()) : Vec3(Vec3::UnitZ());
+  c.epsilon = epsilon;
+  c.mu = mu;
+  c.v_rel_minus = v.z();
+  c.kind = v.z() < -Settings{}.restitution_threshold ? ContactKind::Colliding
+                                                      : (v.z() > 0.0 ? ContactKind::Separating : ContactKind::Resting);
+  s.contacts = {c};
+  return s;
+}
+
+int solveWith(ResponseMethod method, FixedSphere& s, Settings settings) {
+  settings.method = method;
+  return method == ResponseMethod::Sequential ? solveSequential(s.bodies, s.contacts, settings)
+                                              : solveSimultaneous(s.bodies, s.contacts, settings);
+}
+
+const char* sideName(bool ground_as_a) { return ground_as_a ? "ground A, sphere B" : "sphere A, ground B"; }
+
+}  // namespace
+
+TEST_CASE("sequential and simultaneous impulses: with nothing approaching, no impulse and one quiet sweep, even at tolerance 0", "[lab05][pts=1]") {
+  // Tolerance 0, the lower end of its range: only a point with v_rel < 0 approaches, and a solver
+  // stops when nothing changes at all. At rest, leaving straight up (no slip, so friction has no
+  // direction) and leaving while sliding (j stays 0, so the cone |j_t| <= mu j is a point).
+  Settings settings;
+  settings.tolerance = 0.0;
+  for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
+    for (const bool ground_as_a : {false, true}) {
+      for (const Vec3& v : {Vec3(Vec3::Zero()), Vec3(0.0, 0.0, 0.5), Vec3(1.5, -0.5, 0.5)}) {
+        FixedSphere s = fixedSphereOnGround(v, 0.5, 0.8, ground_as_a);
+        INFO(responseMethodName(method) << ", " << sideName(ground_as_a) << ", v " << v.transpose());
+        CHECK(solveWith(method, s, settings) == 1);
+        // Nothing was applied: every velocity and accumulated impulse is exactly what it was.
+        CHECK(s.bodies[s.sphere].v == v);
+        CHECK(s.bodies[s.sphere].omega == Vec3::Zero());
+        CHECK(s.contacts[0].j == 0.0);
+        CHECK(s.contacts[0].j_t == Vec3::Zero());
+      }
+    }
+  }
+  // No contacts at all: the one sweep that finds nothing (world.hpp), and no body touched.
+  FixedSphere s = fixedSphereOnGround(Vec3(1.0, 0.0, -1.0), 0.5, 0.8, false);
+  std::vector<Contact> none;
+  CHECK(solveSequential(s.bodies, none, settings) == 1);
+  settings.method = ResponseMethod::Simultaneous;
+  CHECK(solveSimultaneous(s.bodies, none, settings) == 1);
+  CHECK(s.bodies[0].v == Vec3(1.0, 0.0, -1.0));
+}
+
+TEST_CASE("sequential and simultaneous impulses: approaching at exactly the restitution threshold rests; a threshold of 0 bounces", "[lab05][pts=1]") {
+  // v_rel = -0.25 m/s exactly. With the threshold at 0.25 m/s the point is resting (|v_rel| <=
+  // threshold, ContactKind): epsilon = 0, it stops. With 0, the lower end of the range, every
+  // approach bounces: v_z = +epsilon 0.25 = 0.125 m/s. K = 1/m exactly (r parallel to n).
+  for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
+    for (const bool ground_as_a : {false, true}) {
+      for (const double threshold : {0.25, 0.0}) {
+        FixedSphere s = fixedSphereOnGround(Vec3(0.0, 0.0, -0.25), 0.5, 0.0, ground_as_a);
+        Settings settings;
+        settings.restitution_threshold = threshold;
+        INFO(responseMethodName(method) << ", " << sideName(ground_as_a) << ", threshold " << threshold << " m/s");
+        solveWith(method, s, settings);
+        const double expected = threshold > 0.0 ? 0.0 : 0.125;
+        // j = 0.25 m (1 + epsilon) and v += j / m: a few roundings of 0.25 m/s.
+        CHECK(s.bodies[s.sphere].v.z() == Approx(expected).margin(1e-15));
+        CHECK(s.contacts[0].j == Approx(kSphereMass * (0.25 + expected)).epsilon(1e-14));
+      }
+    }
+  }
+}
+
+TEST_CASE("sequential and simultaneous impulses: a sphere sliding onto the ground takes j and mu j by hand, as A or as B", "[lab05][pts=1]") {
+  // m = 2 kg, r = 0.2 m, I = 2/5 m r^2, arriving at v = (2, 0, -1) m/s without spin; epsilon 0.5,
+  // mu 0.1. Normal: K = 1/m, j = (1 + epsilon) m 1 = 3 N s, v_z = +0.5. Friction: stopping the slip
+  // of 2 m/s would take 2 / (7 / (2 m)) = 8/7 N s > mu j = 0.3 N s, so it slides: 0.3 N s against
+  // the slip. v_x = 2 - 0.3 / m = 1.85, omega_y = r 0.3 / I = 1.875 rad/s, still sliding at
+  // 1.85 - r 1.875 = 1.475 m/s. The stored j_t is the impulse on A: (-0.3, 0, 0) on the sphere as A,
+  // (+0.3, 0, 0) on the ground as A. Two sweeps: the impulses, then a quiet sweep (the clamp holds).
+  for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
+    for (const bool ground_as_a : {false, true}) {
+      FixedSphere s = fixedSphereOnGround(Vec3(2.0, 0.0, -1.0), 0.5, 0.1, ground_as_a);
+      INFO(responseMethodName(method) << ", " << sideName(ground_as_a));
+      CHECK(solveWith(method, s, Settings{}) == 2);
+      const ContactBody& sphere = s.bodies[s.sphere];
+      const Contact& c = s.contacts[0];
+      // A few roundings of numbers of order 1 (N s, m/s, rad/s).
+      CHECK(c.j == Approx(3.0).epsilon(1e-14));
+      CHECK((c.j_t - Vec3(ground_as_a ? 0.3 : -0.3, 0.0, 0.0)).norm() <= 1e-14);
+      CHECK((sphere.v - Vec3(1.85, 0.0, 0.5)).norm() <= 1e-14);
+      CHECK((sphere.omega - Vec3(0.0, 1.875, 0.0)).norm() <= 1e-14);
+      // The ground, A or B, never moves (zero inverses, exactly).
+      CHECK(s.bodies[1 - s.sphere].v == Vec3::Zero());
+      CHECK(s.bodies[1 - s.sphere].omega == Vec3::Zero());
+    }
+  }
 }

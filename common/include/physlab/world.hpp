@@ -93,10 +93,13 @@ const char* responseMethodName(ResponseMethod method);
 /// Every knob of World::step(), printed with every run (no statics anywhere).
 struct Settings {
   ResponseMethod method = ResponseMethod::Sequential;  ///< how contacts are answered
-  int iterations = 50;                ///< largest number of sweeps over the contact points
-  double tolerance = 1e-9;            ///< approaching means \f$v_{rel}\f$ < -tolerance; solvers stop when no velocity changes more [m/s]
-  double restitution_threshold = 0.05;  ///< points with \f$|v_{rel}|\f$ below this are resting: \f$\epsilon\f$ = 0 [m/s]
-  bool warm_start = true;             ///< simultaneous solver and resting-contact solver: start from last step's impulses (same feature ids)
+  int iterations = 50;                ///< largest number of sweeps over the contact points, >= 1
+  double tolerance = 1e-9;            ///< approaching means \f$v_{rel}\f$ < -tolerance; solvers stop when no velocity changes more [m/s], >= 0 (0: stop only when nothing changes)
+  double restitution_threshold = 0.05;  ///< points with \f$|v_{rel}|\f$ at most this are resting: \f$\epsilon\f$ = 0 [m/s], >= 0 (0: every approach bounces)
+  /// Simultaneous solver and resting-contact solver: start from last step's impulses (same feature
+  /// ids). The World decides it: when off, the contacts reach the solver with j = 0 and j_t = 0;
+  /// solveSimultaneous() applies whatever j, j_t its contacts carry and never reads this flag.
+  bool warm_start = true;
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);  ///< uniform gravitational acceleration, world frame [m/s^2]
   double penalty_k = 1e4;             ///< penalty spring stiffness k [N/m]
   double penalty_d = 0.0;             ///< penalty damping d [N s/m]
@@ -155,8 +158,9 @@ struct Contact {
 
 /// A particle of mass m hitting a fixed plane with unit normal n: when it approaches
 /// (\f$v^- \cdot \hat n < 0\f$), \f$v^+ = v^- + \frac{j}{m}\hat n\f$ with
-/// \f$j = -(1 + \epsilon)\, m\, v^- \cdot \hat n\f$; otherwise \f$v^+ = v^-\f$ [m/s].
-/// Handout: Lab 5, section 1.
+/// \f$j = -(1 + \epsilon)\, m\, v^- \cdot \hat n\f$; otherwise (grazing at \f$v^- \cdot \hat n = 0\f$
+/// included) \f$v^+ = v^-\f$ [m/s]. Every \f$\epsilon\f$ in [0, 1] is allowed, both ends included
+/// (0: a dead stop along n, 1: a perfect bounce). Handout: Lab 5, section 1.
 Vec3 particlePlaneResponse(double m, const Vec3& v_minus, const Vec3& n, double epsilon);
 
 /// The world inverse inertia \f$I^{-1} = R\, I_{body}^{-1} R^T\f$ with \f$R = R(q)\f$ (q normalised).
@@ -185,34 +189,43 @@ void applyImpulse(ContactBody& A, ContactBody& B, const Vec3& p, const Vec3& J);
 /// Coulomb friction at p: the impulse in the tangent plane (normal n) that stops the sliding
 /// velocity \f$v_t\f$ of A relative to B, \f$-\frac{|v_t|}{K_t}\hat t\f$ with \f$\hat t = v_t / |v_t|\f$
 /// and \f$K_t\f$ = inverseEffectiveMass() along \f$\hat t\f$, shortened to length `j_max` when
-/// longer (sliding; \f$j_{max} = \mu j\f$), kept when shorter (sticking). Zero when not sliding.
-/// [N s] Handout: Lab 5, section 4.
+/// longer (sliding; \f$j_{max} = \mu j\f$), kept when shorter (sticking). Exactly zero when not
+/// sliding (\f$v_t = 0\f$, so no direction \f$\hat t\f$) and when `j_max` = 0 (\f$\mu = 0\f$ or
+/// \f$j = 0\f$); `j_max` may be infinite (no bound). [N s] Handout: Lab 5, section 4.
 Vec3 frictionImpulse(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double j_max);
 
 /// Sequential impulses (collision propagation): sweeps over the contacts in order; a point that
 /// approaches (\f$v_{rel} <\f$ -settings.tolerance) receives its full impulse
 /// impulseMagnitude() with the *current* \f$v_{rel}\f$ and its epsilon, added to its accumulated
-/// j, and friction clamped so that the accumulated \f$|j_t| \le \mu j\f$. Points approaching slower
-/// than settings.restitution_threshold use \f$\epsilon = 0\f$. Repeats until a sweep finds no
-/// approaching point and changes no sliding speed by more than settings.tolerance, or after
-/// settings.iterations sweeps. Returns the sweeps made.
+/// j, and friction clamped so that the accumulated \f$|j_t| \le \mu j\f$ (none while j = 0). Points
+/// approaching no faster than settings.restitution_threshold (\f$v_{rel} \ge\f$ -threshold, resting as
+/// ContactKind has it) use \f$\epsilon = 0\f$. Repeats until a sweep finds no approaching point and
+/// changes no sliding speed by more than settings.tolerance, or after settings.iterations sweeps.
+/// Returns the sweeps made, the final quiet one included: a list where nothing approaches (or no
+/// contacts at all) takes 1.
 /// Handout: Lab 5, section 5.
 int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings);
 
 /// Simultaneous impulses (Jacobi): each sweep computes every point's correction from the same
-/// velocities, aiming at \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$ (v_rel_minus of the contact), with
+/// velocities, aiming at \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$ (v_rel_minus of the contact; 0 when
+/// \f$v_{rel}^- \ge\f$ -settings.restitution_threshold), with
 /// accumulated impulses clamped to \f$j \ge 0\f$ and \f$|j_t| \le \mu j\f$ (a point's friction sees its
 /// own normal correction), then applies them all, each scaled by 1/(the largest number of contacts
 /// on either of its moving bodies; a fixed body takes no correction and counts none) so that a body
 /// resting on several points does not receive several full corrections. Contacts that arrive with
-/// j, j_t from the last step (warm starting) apply them first. Repeats until no correction exceeds
-/// settings.tolerance (as a velocity change) or settings.iterations sweeps. Returns the sweeps.
+/// j, j_t from the last step (warm starting) apply them first, whatever settings.warm_start says.
+/// Repeats until no correction exceeds settings.tolerance (as a velocity change: a correction
+/// clamped away changes nothing) or settings.iterations sweeps; every sweep's corrections,
+/// the last one's included, reach the bodies, so the momentum each body gained is exactly the
+/// accumulated impulses at its points. Returns the sweeps, the last one included: no contacts at
+/// all take 1.
 /// Handout: Lab 5, section 6.
 int solveSimultaneous(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings);
 
 /// The penalty force on A at a touching point (lecture 001): a spring of stiffness k on the depth
 /// and a damper d on the normal velocity, \f$F = \max(0,\ k\, depth - d\, v_{rel})\, \hat n\f$ (never pulling)
-/// [N]. Handout: Lab 5, section 7.
+/// [N], for depth >= 0 and d >= 0: at depth exactly 0 (just touching) the damper alone pushes a point
+/// that approaches, and with d = 0 the spring alone acts. Handout: Lab 5, section 7.
 Vec3 penaltyForce(double depth, double v_rel, const Vec3& n, double k, double d);
 ///@}
 
