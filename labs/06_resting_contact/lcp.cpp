@@ -37,7 +37,8 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // TODO(student): f_d > 0: d joins C; otherwise NC.
   // Report w from f itself, not from the accumulated steps
   // TODO(student): w = A f + b, residual = lcpResidual(A, b, f), iterations = pivots; LcpFailure("... lost accuracy ...")
-  // TODO(student): when residual > sqrt(pivot_tolerance) * max(1, max |b_i|).
+  // TODO(student): when residual > sqrt(pivot_tolerance) * max(1, max |b_i|) (n = 0 is valid: max |b_i| = 0 there,
+  // TODO(student): b.lpNorm<Eigen::Infinity>(); maxCoeff() of an empty vector reads past its end).
   notImplemented("solveLcpPivoting", "Lab 6 handout, section 3", A, b, options);
 }
 
@@ -101,7 +102,7 @@ LcpSolution solveLcpPgsCone(const MatX& A, const VecX& b, const VecX& mu, const 
   // TODO(student): when longer than mu f_n, scale (f_t, f_o) down to that length.
   // Measure the change as a change of w (|df_i| a_ii), comparable across contacts
   // TODO(student): stop when the sweep's largest |df_i| a_ii <= options.tolerance (that is the residual) or after max_iterations
-  // TODO(student): (residual infinity when no sweep ran).
+  // TODO(student): (none when <= 0: residual infinity when no sweep ran).
   notImplemented("solveLcpPgsCone", "Lab 6 handout, section 6", A, b, mu, options);
 }
 

@@ -29,7 +29,8 @@ void validateOptions(const LcpOptions& options, const std::string& what) {
 
 // An exact method whose round-off wrecked its answer says so rather than return a wrong f.
 void requireAccurate(const LcpSolution& s, const VecX& b, const LcpOptions& options, const std::string& what) {
-  const double bound = std::sqrt(options.pivot_tolerance) * std::max(1.0, b.cwiseAbs().maxCoeff());
+  // (lpNorm<Infinity> is max |b_i|, and 0 for an empty LCP, where maxCoeff() reads past the end)
+  const double bound = std::sqrt(options.pivot_tolerance) * std::max(1.0, b.lpNorm<Eigen::Infinity>());
   if (!(s.residual <= bound)) {
     throw LcpFailure(what + ": lost accuracy after " + std::to_string(s.iterations) + " pivots (residual " +
                      std::to_string(s.residual) + ")");
@@ -273,7 +274,7 @@ LcpSolution solveLcpPgs(const MatX& A, const VecX& b, const LcpOptions& options,
     }
     ++s.iterations;
     // lcpResidual()'s value without its input checks, which validateLcp() made once already
-    s.residual = (A * s.f + b).cwiseMin(s.f).cwiseAbs().maxCoeff();
+    s.residual = (A * s.f + b).cwiseMin(s.f).lpNorm<Eigen::Infinity>();
     if (residuals != nullptr) residuals->push_back(s.residual);
     if (s.residual <= options.tolerance) break;
   }

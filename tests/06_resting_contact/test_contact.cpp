@@ -100,6 +100,52 @@ TEST_CASE("contact matrix: a sphere on the ground, hand computed", "[lab06][pts=
   CHECK(A(0, 1) == Approx(1.0 / m).epsilon(1e-14));
 }
 
+TEST_CASE("contact matrix: two boxes stacked on the ground, hand computed: a body that is B in one row and A in another", "[lab06][pts=1]") {
+  // Bodies: the ground (fixed), a lower box 1 and an upper box 2, each with an isotropic inertia
+  // I_k. Rows with vertical normals n_i = sigma_i z: the lower box on the ground (1, 0), the upper
+  // on the lower (2, 1) at two points (rows sharing both bodies), and once the other way round
+  // (lower box as A, normal -z). For vertical normals (r_j x n_j) . (r_i x n_i) is sigma_i sigma_j
+  // times the dot product of the horizontal offsets rho = (p - x)_xy, so by hand
+  //   a_ij = sigma_i sigma_j sum_k s_ki s_kj (1/m_k + rho_ki . rho_kj / I_k),
+  // s_ki = +1 when body k is row i's A, -1 when its B. Box 1 is A in the ground rows and B in the
+  // stack rows (the reversed row: A again): every row pair exercises both signs.
+  const double m1 = uniform(0.5, 3.0), m2 = uniform(0.5, 3.0), I1 = uniform(0.1, 1.0), I2 = uniform(0.1, 1.0);
+  ContactBody ground, lower, upper;
+  lower.x = Vec3(uniform(-1.0, 1.0), uniform(-1.0, 1.0), 0.1);
+  lower.inv_mass = 1.0 / m1;
+  lower.I_inv_world = Mat3::Identity() / I1;
+  upper.x = lower.x + Vec3(uniform(-0.1, 0.1), uniform(-0.1, 0.1), 0.2);
+  upper.inv_mass = 1.0 / m2;
+  upper.I_inv_world = Mat3::Identity() / I2;
+  const std::vector<ContactBody> bodies = {ground, lower, upper};
+  auto at = [&](double height) -> Vec3 { return lower.x + Vec3(uniform(-0.3, 0.3), uniform(-0.2, 0.2), height); };
+  const std::vector<ContactRow> rows = {{1, 0, at(-0.1), Vec3::UnitZ()},
+                                        {2, 1, at(0.1), Vec3::UnitZ()},
+                                        {2, 1, at(0.1), Vec3::UnitZ()},
+                                        {1, 2, at(0.1), -Vec3::UnitZ()},
+                                        {1, 0, at(-0.1), Vec3::UnitZ()}};
+  const Index n = static_cast<Index>(rows.size());
+  const double inv_mass[3] = {0.0, 1.0 / m1, 1.0 / m2}, inv_inertia[3] = {0.0, 1.0 / I1, 1.0 / I2};
+  MatX expected = MatX::Zero(n, n);
+  for (Index i = 0; i < n; ++i) {
+    for (Index j = 0; j < n; ++j) {
+      const ContactRow &ri = rows[static_cast<std::size_t>(i)], &rj = rows[static_cast<std::size_t>(j)];
+      for (int k = 1; k <= 2; ++k) {
+        const double s_i = ri.a == k ? 1.0 : (ri.b == k ? -1.0 : 0.0), s_j = rj.a == k ? 1.0 : (rj.b == k ? -1.0 : 0.0);
+        const Vec3 rho_i = (ri.p - bodies[static_cast<std::size_t>(k)].x).cwiseProduct(Vec3(1.0, 1.0, 0.0));
+        const Vec3 rho_j = (rj.p - bodies[static_cast<std::size_t>(k)].x).cwiseProduct(Vec3(1.0, 1.0, 0.0));
+        expected(i, j) += ri.d.z() * rj.d.z() * s_i * s_j * (inv_mass[k] + inv_inertia[k] * rho_i.dot(rho_j));
+      }
+    }
+  }
+  const MatX A = contactMatrix(bodies, rows);
+  REQUIRE(A.rows() == n);
+  REQUIRE(A.cols() == n);
+  INFO("A\n" << A << "\nexpected\n" << expected);
+  // A few products of numbers of order 1 in another order: round-off relative to the largest entry
+  CHECK((A - expected).cwiseAbs().maxCoeff() <= 1e-13 * expected.cwiseAbs().maxCoeff());
+}
+
 TEST_CASE("Baraff's b: the second derivative of the separation with no contact force", "[lab06][pts=3]") {
   // Two moving bodies (or one against a fixed body) with applied forces and torques. Their
   // motion to second order in t, x(t) = x + v t + F/(2m) t^2 and R(t) = (1 + t W + t^2/2 (W' + W^2)) R,
@@ -185,6 +231,42 @@ TEST_CASE("velocity bias: relative velocity along the row less the Baumgarte pus
   CHECK_THROWS_AS(velocityBias(bodies, rows, VecX::Zero(2), 0.0, beta, slop), InvalidInput);
   CHECK_THROWS_AS(velocityBias(bodies, rows, VecX::Zero(2), h, 1.5, slop), InvalidInput);
   CHECK_THROWS_AS(velocityBias(bodies, rows, VecX::Zero(2), h, beta, -1.0), InvalidInput);
+  // The ends of the documented ranges are allowed: beta = 1 (remove the whole overlap in a step),
+  // beta = 0 (no correction) and slop = 0 (correct every overlap)
+  const VecX depths = Vec3(depth, 0.0, 0.0).head<2>();
+  CHECK(velocityBias(bodies, rows, depths, h, 1.0, slop)(0) == Approx(ball.v.z() - (depth - slop) / h).epsilon(1e-13));
+  CHECK(velocityBias(bodies, rows, depths, h, 0.0, slop)(0) == ball.v.z());  // nothing subtracted
+  CHECK(velocityBias(bodies, rows, depths, h, beta, 0.0)(0) == Approx(ball.v.z() - beta / h * depth).epsilon(1e-13));
+}
+
+TEST_CASE("velocity bias: a moving, spinning body B counts with its own point velocity, in either row order", "[lab06][pts=1]") {
+  // The ball of the test above on a platform B that moves and spins about z: at p = 0, B's point
+  // moves at v_b + omega_b x (p - x_b) = (v_bx, -0.5 omega_bz, v_bz) for x_b = (0.5, 0, -0.1); the
+  // ball's at (v_x - 0.1 omega_y, 0, v_z). Rows: the normal (ball A, platform B), the tangents x and
+  // y, and the normal again with the roles swapped (platform A, ball B, normal -z): the same number.
+  ContactBody ball, platform;
+  ball.x = Vec3(0.0, 0.0, 0.1);
+  ball.v = Vec3(uniform(0.5, 2.0), 0.0, -uniform(0.1, 1.0));
+  ball.omega = Vec3(0.0, uniform(-3.0, 3.0), 0.0);
+  ball.inv_mass = 1.0;
+  ball.I_inv_world = Mat3::Identity() * 250.0;
+  platform.x = Vec3(0.5, 0.0, -0.1);
+  platform.v = Vec3(uniform(-1.0, 1.0), 0.0, uniform(0.2, 1.0));
+  platform.omega = Vec3(0.0, 0.0, uniform(1.0, 3.0));
+  platform.inv_mass = 0.5;
+  platform.I_inv_world = Mat3::Identity() * 2.0;
+  const std::vector<ContactBody> bodies = {ball, platform};
+  const Vec3 p = Vec3::Zero();
+  const std::vector<ContactRow> rows = {
+      {0, 1, p, Vec3::UnitZ()}, {0, 1, p, Vec3::UnitX()}, {0, 1, p, Vec3::UnitY()}, {1, 0, p, -Vec3::UnitZ()}};
+  const double h = 0.01, beta = 0.2, slop = 0.002, depth = uniform(0.003, 0.02);
+  const VecX b = velocityBias(bodies, rows, Eigen::Vector4d(depth, 0.0, 0.0, depth), h, beta, slop);
+  const double push = beta / h * (depth - slop);
+  // A handful of roundings on numbers of order 1
+  CHECK(b(0) == Approx(ball.v.z() - platform.v.z() - push).epsilon(1e-13));
+  CHECK(b(1) == Approx(ball.v.x() - 0.1 * ball.omega.y() - platform.v.x()).epsilon(1e-13));
+  CHECK(b(2) == Approx(0.5 * platform.omega.z()).epsilon(1e-13));
+  CHECK(b(3) == Approx(b(0)).epsilon(1e-13));
 }
 
 TEST_CASE("friction pyramid: a sliding sphere's hand solution solves the LCP, a wrong friction does not", "[lab06][pts=3]") {
@@ -302,4 +384,36 @@ TEST_CASE("friction pyramid: two spheres sliding apart, each contact's direction
   VecX wrong = z;
   std::swap(wrong(2 + k + 2), wrong(2 + 2));
   CHECK(lcpResidual(lcp.A, lcp.b, wrong) > 1e-4);
+}
+
+TEST_CASE("friction pyramid: the smallest pyramid (k = 3) with a frictionless contact (mu = 0), built here entry by entry", "[lab06][pts=1]") {
+  // m = 2 contacts, k = 3 directions (the least the header allows), contact 0 without friction
+  // (mu = 0 is not negative). Unknowns (lambda_0, lambda_1, beta_0 (3), beta_1 (3), gamma_0, gamma_1).
+  const int k = 3;
+  const Index m = 2, rows = m + m * k;
+  MatX A(rows, rows);
+  VecX b(rows);
+  for (Index i = 0; i < rows; ++i) {
+    b(i) = uniform(-1.0, 1.0);
+    for (Index j = 0; j < rows; ++j) A(i, j) = uniform(-1.0, 1.0);
+  }
+  const VecX mu = Vec3(0.0, uniform(0.1, 1.0), 0.0).head<2>();
+  MatX expected = MatX::Zero(rows + m, rows + m);
+  VecX expected_b = VecX::Zero(rows + m);
+  expected.topLeftCorner(rows, rows) = A;
+  expected_b.head(rows) = b;
+  for (Index i = 0; i < m; ++i) {
+    for (Index l = 0; l < k; ++l) {
+      expected(m + i * k + l, rows + i) = 1.0;   // E: w_d sees its contact's sliding speed
+      expected(rows + i, m + i * k + l) = -1.0;  // -E^T: the friction inside the pyramid
+    }
+    expected(rows + i, i) = mu(i);
+  }
+  const LcpProblem lcp = frictionPyramid(A, b, mu, k);
+  REQUIRE(lcp.A.rows() == rows + m);
+  REQUIRE(lcp.A.cols() == rows + m);
+  REQUIRE(lcp.b.size() == rows + m);
+  // Copies and constants: exact
+  CHECK(lcp.A == expected);
+  CHECK(lcp.b == expected_b);
 }

@@ -28,6 +28,8 @@ void checkOneStepOracles(LcpSolver solve) {
   CHECK(zero.f == VecX::Zero(n));
   CHECK(zero.w == b);  // A 0 + b
   CHECK(zero.residual == 0.0);
+  // b >= 0 needs no pivot, a b_i of exactly 0 (a contact just touching) included
+  CHECK(zero.iterations == 0);
   const double a = uniform(0.1, 10.0), b1 = -uniform(0.1, 10.0);
   const LcpSolution one = solve(MatX::Constant(1, 1, a), VecX::Constant(1, b1), {});
   // One division: exact in binary floating point.
@@ -303,4 +305,22 @@ TEST_CASE("pivoting and lemke: iterations count every pivot, counted by hand", "
   // b >= 0: f = 0 solves it with no pivot at all
   CHECK(solveLcpPivoting(A, -b).iterations == 0);
   CHECK(solveLcpLemke(A, -b).iterations == 0);
+  // b = (1, -1): contact 0 never pushes (w_0 = 1 > 0, f_0 = 0) and joins the free set, so driving
+  // f_1 leaves f_0 alone (df = (0, 1), w_0 grows by c): 1 pivot, f = (0, 1), w_0 = 1 + c. A
+  // contact with f = 0 held in the clamped set would first have to leave it: 2 pivots.
+  const VecX free_first = (VecX(2) << 1.0, -1.0).finished();
+  const LcpSolution one_free = solveLcpPivoting(A, free_first);
+  CHECK(one_free.iterations == 1);
+  CHECK(one_free.f(0) == 0.0);
+  CHECK(std::abs(one_free.f(1) - 1.0) <= 4e-16);  // one quotient of 1s: exact, an ulp of margin
+  // Lemke, z0 tied for leaving: A = [[2, 1], [1, 2]], b = (-2, -1). z0 enters at row 0 (z0 = 2,
+  // w_1 = 1); f_0 enters with ratios 2 / 2 for z0 and 1 / (2 - 1) for w_1: a tie, and z0 leaves
+  // (2 pivots) at f = (1, 0), w = (0, 0). Letting w_1 leave instead keeps z0 basic at 0 for a
+  // third, degenerate pivot.
+  MatX T(2, 2);
+  T << 2.0, 1.0, 1.0, 2.0;
+  const LcpSolution tie = solveLcpLemke(T, (VecX(2) << -2.0, -1.0).finished());
+  CHECK(tie.iterations == 2);
+  CHECK((tie.f - (VecX(2) << 1.0, 0.0).finished()).cwiseAbs().maxCoeff() <= 4e-16);  // halves and ones
+  CHECK(tie.w.cwiseAbs().maxCoeff() <= 4e-16);
 }

@@ -358,9 +358,48 @@ TEST_CASE("pgs cone: one sweep from a warm start, computed here: clamp and disc-
   options.initial = VecX();
   CHECK(cold.f == solveLcpPgsCone(A, b, mu, options).f);
   CHECK((cold.f - f).cwiseAbs().maxCoeff() > 1e-6);
+  // Beside the random case, one where only the friction moves: A = I, b = (-1, 1/2, 0), mu = 1,
+  // started at f = (1, 0, 0). The normal update keeps f_n = 1 (w_n = 0); w_T = (1/2, 0), lambda = 1,
+  // so f_T = (-1/2, 0), inside the disc of radius 1: the sweep's largest change is 1/2, on f_t.
+  // A second sweep changes nothing (w = 0) and stops.
+  options.initial = Vec3(1.0, 0.0, 0.0);
+  const Vec3 pull(-1.0, 0.5, 0.0);
+  const LcpSolution friction = solveLcpPgsCone(MatX::Identity(3, 3), pull, VecX::Constant(1, 1.0), options);
+  CHECK(friction.iterations == 1);
+  CHECK(friction.f == VecX(Vec3(1.0, -0.5, 0.0)));  // halves: exact
+  CHECK(friction.residual == 0.5);
+  options.max_iterations = 10;
+  const LcpSolution settled = solveLcpPgsCone(MatX::Identity(3, 3), pull, VecX::Constant(1, 1.0), options);
+  CHECK(settled.iterations == 2);
+  CHECK(settled.residual == 0.0);
 }
 
-TEST_CASE("pgs: the result contract: no sweep at max_iterations 0, w of the returned f, tolerance 0 stops on an exact solution", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: one-step oracle, no contact pressed gives f = 0 exactly after one sweep, whatever the tangential pull", "[lab06][pts=1]") {
+  // b_n >= 0 (contact 0 just touching, b_n = 0): every normal update is max(0, 0 - b_n / a_nn) = 0,
+  // so every disc has radius mu 0 = 0 and the tangential step, whatever b_T asks, is scaled back
+  // to f_T = 0 (a zero f_T on a zero disc stays 0, no 0/0). The sweep changed nothing: the
+  // largest change is 0 <= tolerance 0, and it stops after that one sweep with f = 0, w = b.
+  const Index k = static_cast<Index>(uniform(2, 5));  // contact 0 untouched, the others pulled sideways
+  const MatX A = coneMatrix(k);
+  VecX b(3 * k), mu(k);
+  for (Index c = 0; c < k; ++c) {
+    mu(c) = uniform(0.2, 1.0);
+    b(3 * c) = c == 0 ? 0.0 : uniform(0.1, 2.0);
+    b(3 * c + 1) = c == 0 ? 0.0 : uniform(-2.0, 2.0);  // contact 0: nothing at all, w_T = 0 exactly
+    b(3 * c + 2) = c == 0 ? 0.0 : uniform(-2.0, 2.0);
+  }
+  LcpOptions options;
+  options.tolerance = 0.0;
+  options.max_iterations = 50;
+  const LcpSolution s = solveLcpPgsCone(A, b, mu, options);
+  INFO(k << " contacts, f " << s.f.transpose());
+  CHECK(s.f == VecX::Zero(3 * k));  // no arithmetic leaves a nonzero entry
+  CHECK(s.w == b);                  // A 0 + b
+  CHECK(s.iterations == 1);
+  CHECK(s.residual == 0.0);
+}
+
+TEST_CASE("pgs: the result contract: no sweep at max_iterations <= 0, w of the returned f, tolerance 0 stops on an exact solution", "[lab06][pts=1]") {
   const Index n = static_cast<Index>(uniform(4, 12));
   const PlantedLcp p = wellConditioned(n, uniform(1.0, 10.0));
   LcpOptions options;
@@ -378,6 +417,13 @@ TEST_CASE("pgs: the result contract: no sweep at max_iterations 0, w of the retu
   CHECK((none.w - (p.A * start + p.b)).cwiseAbs().maxCoeff() <= 1e-12 * (1.0 + p.A.cwiseAbs().maxCoeff()));
   CHECK(none.residual == Approx(complementarity(p.A, p.b, start)).epsilon(1e-9).margin(1e-15));
   REQUIRE(none.residual > 0.0);  // random start: not a solution, so a residual of 0 is wrong
+  // "max_iterations <= 0": a negative count is no sweep either, not a loop until the tolerance
+  options.max_iterations = -static_cast<int>(uniform(1, 10));
+  const LcpSolution negative = solveLcpPgs(p.A, p.b, options, &history);
+  CHECK(negative.iterations == 0);
+  CHECK(history.empty());
+  CHECK(negative.f == start);
+  CHECK(negative.residual == none.residual);  // the same start measured the same way
   // A few sweeps without converging: w belongs to the returned f, not to the f a sweep ago
   options.max_iterations = static_cast<int>(uniform(1, 4));
   options.tolerance = 0.0;
@@ -396,7 +442,7 @@ TEST_CASE("pgs: the result contract: no sweep at max_iterations 0, w of the retu
   CHECK(exact.iterations == 1);
 }
 
-TEST_CASE("pgs cone: with max_iterations 0 the start comes back projected, residual infinity, w = A f + b", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: with max_iterations <= 0 the start comes back projected, residual infinity, w = A f + b", "[lab06][pts=1]") {
   const Index k = static_cast<Index>(uniform(1, 4));
   const MatX A = coneMatrix(k);
   VecX b(3 * k), mu(k), start(3 * k);
@@ -424,4 +470,10 @@ TEST_CASE("pgs cone: with max_iterations 0 the start comes back projected, resid
   CHECK((s.f - f).cwiseAbs().maxCoeff() <= 1e-15 * (1.0 + f.cwiseAbs().maxCoeff()));
   REQUIRE(s.w.size() == 3 * k);
   CHECK((s.w - (A * s.f + b)).cwiseAbs().maxCoeff() <= 1e-12);  // w = A f + b, round-off of O(1) sums
+  // A negative count is no sweep either, not a loop until the changes are small
+  options.max_iterations = -static_cast<int>(uniform(1, 10));
+  const LcpSolution negative = solveLcpPgsCone(A, b, mu, options);
+  CHECK(negative.iterations == 0);
+  CHECK(negative.residual == std::numeric_limits<double>::infinity());
+  CHECK(negative.f == s.f);  // the same start, projected the same way
 }

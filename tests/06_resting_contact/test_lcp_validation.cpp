@@ -60,9 +60,18 @@ TEST_CASE("pgs: refuses bad input, and a non-positive diagonal entry with LcpFai
   MatX A = MatX::Identity(3, 3);
   A(1, 1) = 0.0;
   CHECK_THROWS_AS(solveLcpPgs(A, VecX::Constant(3, -1.0)), LcpFailure);
+  // "a_ii <= pivot_tolerance" includes the boundary: a_ii equal to the tolerance, 0 with a zero one
+  LcpOptions options;
+  options.pivot_tolerance = 0.0;
+  CHECK_THROWS_AS(solveLcpPgs(A, VecX::Constant(3, -1.0), options), LcpFailure);
+  options.pivot_tolerance = uniform(0.1, 1.0);
+  A(1, 1) = options.pivot_tolerance;
+  CHECK_THROWS_AS(solveLcpPgs(A, VecX::Constant(3, -1.0), options), LcpFailure);
+  A(1, 1) = 2.0 * options.pivot_tolerance;
+  CHECK_NOTHROW(solveLcpPgs(A, VecX::Constant(3, -1.0), options));
 }
 
-TEST_CASE("pgs cone: refuses bad input, a size not a multiple of 3, a wrong mu size and a negative mu", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: refuses bad input, a size not a multiple of 3, a wrong mu size, a negative or infinite mu and a_ii <= pivot_tolerance", "[lab06][pts=1]") {
   checkRefusesBadInput(cone);
   const Index k = static_cast<Index>(uniform(1, 4));
   const MatX A = randomSpd(3 * k, 10.0);
@@ -79,7 +88,22 @@ TEST_CASE("pgs cone: refuses bad input, a size not a multiple of 3, a wrong mu s
   CHECK_THROWS_WITH(solveLcpPgsCone(A, b, mu), Contains("mu(" + std::to_string(k - 1) + ")"));
   mu(k - 1) = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(solveLcpPgsCone(A, b, mu), InvalidInput);
+  mu(k - 1) = std::numeric_limits<double>::infinity();  // "not finite": infinity as well as NaN
+  CHECK_THROWS_AS(solveLcpPgsCone(A, b, mu), InvalidInput);
+  CHECK_THROWS_WITH(solveLcpPgsCone(A, b, mu), Contains("mu(" + std::to_string(k - 1) + ")"));
   CHECK_NOTHROW(solveLcpPgsCone(A, b, VecX::Zero(k)));
+  // Every diagonal entry is divided by (normal) or bounds lambda (tangential): a_ii <= pivot_tolerance,
+  // the boundary included, is an LcpFailure, in a normal row and in a tangential one
+  LcpOptions options;
+  options.pivot_tolerance = uniform(0.01, 0.05);  // below randomSpd's smallest eigenvalue 1, so below every a_ii
+  for (const Index i : {Index{0}, 3 * k - 1}) {
+    MatX bad = A;
+    bad(i, i) = 0.0;
+    CHECK_THROWS_AS(solveLcpPgsCone(bad, b, VecX::Constant(k, 0.5)), LcpFailure);
+    bad(i, i) = options.pivot_tolerance;
+    CHECK_THROWS_AS(solveLcpPgsCone(bad, b, VecX::Constant(k, 0.5), options), LcpFailure);
+  }
+  CHECK_NOTHROW(solveLcpPgsCone(A, b, VecX::Constant(k, 0.5), options));
 }
 
 TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and allows zero ones", "[lab06][pts=1]") {
@@ -105,9 +129,47 @@ TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and all
   options = LcpOptions{};
   options.pivot_tolerance = -uniform(1e-12, 1.0);
   refusedByAll(options, "tolerance");
-  // Zero tolerances are allowed
+  // Zero tolerances are allowed, and each solver still solves a problem it can solve exactly:
+  // A = [[2, 1, 0], [1, 2, 0], [0, 0, 4]], b = (-1, 1, -2) has f = (1/2, 0, 1/2), w = (0, 3/2, 0),
+  // all in halves, so every solver lands on it exactly
   options = LcpOptions{};
   options.tolerance = 0.0;
   options.pivot_tolerance = 0.0;
   CHECK_NOTHROW(solveLcpPgs(A, b, options));
+  MatX H(3, 3);
+  H << 2.0, 1.0, 0.0, 1.0, 2.0, 0.0, 0.0, 0.0, 4.0;
+  const Vec3 q(-1.0, 1.0, -2.0), f(0.5, 0.0, 0.5), w(0.0, 1.5, 0.0);
+  for (const LcpSolution& s : {solveLcpPivoting(H, q, options), solveLcpLemke(H, q, options), solveLcpPgs(H, q, options)}) {
+    CAPTURE(s.f.transpose(), s.w.transpose(), s.iterations);
+    // Sums and quotients of halves: exact, or off by an ulp at most
+    CHECK((s.f - f).cwiseAbs().maxCoeff() <= 1e-15);
+    CHECK((s.w - w).cwiseAbs().maxCoeff() <= 1e-15);
+  }
+  // Pivoting: contact 0 clamps (1 pivot), contact 1 stays free, contact 2 clamps (1 pivot); a w_d
+  // that reached 0 exactly is not negative and is never driven again
+  CHECK(solveLcpPivoting(H, q, options).iterations == 2);
+  // PGS: the first sweep lands on f exactly (A is block diagonal), residual 0 <= 0 stops it
+  CHECK(solveLcpPgs(H, q, options).iterations == 1);
+  // The cone on the same numbers, one contact (n, t, o) with mu = 1/2: no failure, a cone point
+  const LcpSolution c = solveLcpPgsCone(H, q, VecX::Constant(1, 0.5), options);
+  CHECK(c.f(0) >= 0.0);
+  CHECK(c.f.tail<2>().norm() <= 0.5 * c.f(0) * (1.0 + 1e-15));  // scaled onto the disc: round-off only
+}
+
+TEST_CASE("every solver takes an empty LCP (n = 0): empty f and w, no pivot, residual 0", "[lab06][pts=1]") {
+  // No contact at all is a valid problem (LcpSolution's contract), not an error and not a read
+  // past the end of an empty vector
+  const MatX A(0, 0);
+  const VecX b(0);
+  const LcpSolution piv = solveLcpPivoting(A, b), lem = solveLcpLemke(A, b), pgs = solveLcpPgs(A, b);
+  const LcpSolution cone = solveLcpPgsCone(A, b, VecX(0));
+  for (const LcpSolution* s : {&piv, &lem, &pgs, &cone}) {
+    CHECK(s->f.size() == 0);
+    CHECK(s->w.size() == 0);
+  }
+  CHECK(piv.iterations == 0);
+  CHECK(lem.iterations == 0);
+  CHECK(piv.residual == 0.0);
+  CHECK(lem.residual == 0.0);
+  CHECK(pgs.residual == 0.0);
 }

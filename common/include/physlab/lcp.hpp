@@ -65,7 +65,8 @@ struct LcpOptions {
   VecX initial;
 };
 
-/// What a solver returns.
+/// What a solver returns. An empty LCP (n = 0: no contact) is valid, not an error: every solver
+/// returns empty f and w, pivoting and Lemke with no pivot and residual 0.
 struct LcpSolution {
   VecX f;              ///< the forces, >= 0 (PGS cone: the normal ones; tangential ones have either sign)
   VecX w;              ///< A f + b
@@ -142,8 +143,8 @@ LcpSolution solveLcpPgs(const MatX& A, const VecX& b, const LcpOptions& options 
 /// steps would tilt the friction towards the stiffer direction. Stops when no entry changes by
 /// more than options.tolerance (scaled by \f$a_{ii}\f$: \f$|\Delta f_i|\, a_{ii}\f$, a velocity or
 /// acceleration change) or after options.max_iterations
-/// sweeps. `residual` in the result is that largest change in the last sweep (infinity when no
-/// sweep ran); `w` is A f + b. With all \f$\mu = 0\f$ it runs PGS's updates on the normal rows.
+/// sweeps (none when max_iterations <= 0). `residual` in the result is that largest change in the
+/// last sweep (infinity when no sweep ran); `w` is A f + b. With all \f$\mu = 0\f$ it runs PGS's updates on the normal rows.
 /// InvalidInput as validateLcp(), and when n is not a multiple of 3 ("not a multiple of 3"), when
 /// mu.size() != n / 3 (naming "mu") and when some mu(k) is negative or not finite (naming "mu(k)");
 /// LcpFailure when some \f$a_{ii} \le\f$ options.pivot_tolerance.
