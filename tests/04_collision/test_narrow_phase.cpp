@@ -215,7 +215,7 @@ TEST_CASE("narrow phase: a sphere whose centre is inside a box leaves through th
     REQUIRE(m.count == 1);
     CHECK(m.points[0].depth == Approx(r + inside).margin(1e-12));  // round-off only
     const Vec3 n_body = sign * Vec3::Unit(i);
-    CHECK((m.normal - pbox.q * n_body).norm() < 1e-12);
+    CHECK((m.normal - pbox.q * n_body).norm() < 1e-12);  // round-off of the pose's rotation
     // Midway between the sphere's deepest point c - r n and the face point beyond the centre
     // (c with its i-th coordinate on the face), in the box frame; round-off of the pose only.
     const Vec3 centre = pbox.toBody(pa.x);
@@ -346,11 +346,11 @@ TEST_CASE("narrow phase: parallel capsules touch at both ends of their overlap, 
       std::vector<double> heights;
       for (int k = 0; k < 2; ++k) {
         CHECK(m.points[k].depth == Approx(overlap).margin(1e-15));  // exact up to one rounding
-        CHECK(m.points[k].position.x() == Approx(0.5 * (overlap + b.radius)).margin(1e-15));
+        CHECK(m.points[k].position.x() == Approx(0.5 * (overlap + b.radius)).margin(1e-15));  // likewise
         heights.push_back(m.points[k].position.z());
       }
-      CHECK(std::min(heights[0], heights[1]) == Approx(lo).margin(1e-15));
-      CHECK(std::max(heights[0], heights[1]) == Approx(hi).margin(1e-15));
+      CHECK(std::min(heights[0], heights[1]) == Approx(lo).margin(1e-15));  // an end, to one rounding
+      CHECK(std::max(heights[0], heights[1]) == Approx(hi).margin(1e-15));  // the other end, likewise
     }
   }
 }
