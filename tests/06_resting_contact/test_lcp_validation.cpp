@@ -148,7 +148,8 @@ TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and all
   // Pivoting: contact 0 clamps (1 pivot), contact 1 stays free, contact 2 clamps (1 pivot); a w_d
   // that reached 0 exactly is not negative and is never driven again
   CHECK(solveLcpPivoting(H, q, options).iterations == 2);
-  // PGS: the first sweep lands on f exactly (A is block diagonal), residual 0 <= 0 stops it
+  // PGS: the first sweep lands on f exactly (f_0 = 1/2, then w_1 = 3/2 keeps f_1 = 0, then f_2 = 1/2:
+  // contact 2 does not couple to the others), and residual 0 <= 0 stops it
   CHECK(solveLcpPgs(H, q, options).iterations == 1);
   // The cone on the same numbers, one contact (n, t, o) with mu = 1/2: no failure, a cone point
   const LcpSolution c = solveLcpPgsCone(H, q, VecX::Constant(1, 0.5), options);
