@@ -175,19 +175,27 @@ TEST_CASE("implicit: the step reports its CG iterations and relative residual", 
   CHECK(ldlt.residual < 1e-12);      // and a residual at round-off: condition number < 1e3
 }
 
+namespace {
+
+// The oracle of CG's iteration count: the framework's block-Jacobi CG (tested against dense
+// solves) on the implicit step's system assembled here, from dv = 0.
+CGResult coldStartCG(const Scene& scene, double h, double tolerance) {
+  const Linearised lin = linearise(scene.net, scene.X, h);
+  SpringMatrix M(scene.net);
+  fillFromDense(scene.net, lin.A, M);
+  VecX dv = VecX::Zero(lin.b.size());
+  return M.solveCG(lin.b, dv, tolerance, 1000);
+}
+
+}  // namespace
+
 TEST_CASE("implicit: the reported CG iterations are those block-Jacobi CG needs from a cold start", "[lab02][pts=1]") {
   const Scene scene = randomCloth();
   const SpringSystem sys(scene.net);  // fresh: its CG starts from dv = 0
   const double h = uniform(0.01, 0.03), tolerance = 1e-6;
   VecX X = scene.X;
   const ImplicitStats stats = implicitEulerStep(sys, X, h, {LinearSolver::ConjugateGradient, tolerance, 1000});
-  // The oracle: the framework's block-Jacobi CG (tested against dense solves) on the system
-  // assembled here, from zero.
-  const Linearised lin = linearise(scene.net, scene.X, h);
-  SpringMatrix M(scene.net);
-  fillFromDense(scene.net, lin.A, M);
-  VecX dv = VecX::Zero(lin.b.size());
-  const CGResult expected = M.solveCG(lin.b, dv, tolerance, 1000);
+  const CGResult expected = coldStartCG(scene, h, tolerance);
   REQUIRE(expected.converged);
   INFO("reported " << stats.iterations << " iterations, block-Jacobi CG from zero takes " << expected.iterations);
   // Exactly: the two matrices differ by round-off (~1e-16 relative), which moves CG's residual
@@ -198,12 +206,7 @@ TEST_CASE("implicit: the reported CG iterations are those block-Jacobi CG needs 
 TEST_CASE("implicit: CG that converges on its last allowed iteration is a success", "[lab02][pts=1]") {
   const Scene scene = randomCloth();
   const double h = uniform(0.01, 0.03), tolerance = 1e-6;
-  // The oracle's count from a cold start, as in the test above.
-  const Linearised lin = linearise(scene.net, scene.X, h);
-  SpringMatrix M(scene.net);
-  fillFromDense(scene.net, lin.A, M);
-  VecX dv = VecX::Zero(lin.b.size());
-  const CGResult needed = M.solveCG(lin.b, dv, tolerance, 1000);
+  const CGResult needed = coldStartCG(scene, h, tolerance);
   REQUIRE(needed.converged);
   REQUIRE(needed.iterations >= 2);
   INFO("block-Jacobi CG from zero needs " << needed.iterations << " iterations");
