@@ -662,10 +662,12 @@ def cmd_run(args) -> int:
     sandbox = Sandbox(args.jobs, switch_user=False)  # the tree's own code: run it as we are
     scratch = Path(tempfile.mkdtemp(prefix="physlab-test-"))
     results, jobs = [], []
+    kit = None
+    if args.variant == "labs" and args.expect != "fail" and (build / "grading" / "toolchain.json").exists():
+        kit = Kit(build)
     for stage in stages:
         result = StageResult(stage)
-        if args.variant == "labs" and args.expect != "fail":
-            result.notes += refusals_ahead(build, stage)
+        result.notes += refusals_ahead(kit, stage)
         for exe in executables(build, stage, args.variant):
             if not exe.exists():
                 result.compile_error += f"{exe.name} was not built\n"
@@ -745,18 +747,19 @@ class Kit:
         self._api = {}
         self._symbols = {}
 
-    def compile_command(self, include: Path, source: Path, obj: Path) -> list:
-        cmd = [self.toolchain["compiler"]] + self.toolchain["flags"].split()
-        cmd += self.toolchain["warnings"].split() + ["-I", str(include)]
-        for d in self.toolchain["system_include"]:
-            cmd += ["-isystem", d]
-        return cmd + ["-MD", "-MF", str(obj.with_suffix(".d")), "-c", str(source), "-o", str(obj)]
-
-    def preprocess_command(self, include: Path, source: Path, out: Path) -> list:
+    def compiler(self, include: Path) -> list:
+        """The compiler with the reference's flags and the framework's and Eigen's headers."""
         cmd = [self.toolchain["compiler"]] + self.toolchain["flags"].split() + ["-I", str(include)]
         for d in self.toolchain["system_include"]:
             cmd += ["-isystem", d]
-        return cmd + ["-E", str(source), "-o", str(out)]
+        return cmd
+
+    def compile_command(self, include: Path, source: Path, obj: Path) -> list:
+        return self.compiler(include) + self.toolchain["warnings"].split() + [
+            "-MD", "-MF", str(obj.with_suffix(".d")), "-c", str(source), "-o", str(obj)]
+
+    def preprocess_command(self, include: Path, source: Path, out: Path) -> list:
+        return self.compiler(include) + ["-E", str(source), "-o", str(out)]
 
     def link_command(self, stage: str, tests: str, student: list, exe: Path) -> list:
         spec = self.stages[stage]
@@ -819,9 +822,9 @@ class Kit:
                     if len(parts) >= 2:
                         defined, imported = members.setdefault(member, (set(), set()))
                         (imported if parts[1] in "Uwv" else defined).add(parts[0])
-            inside = set().union(*(d for d, _ in members.values())) if members else set()
+            inside = set().union(*(d for d, _ in members.values()))
             outside = demangle(set().union(*(i for _, i in members.values())) - inside
-                               - ALLOWED_C - self.libm()) if members else {}
+                               - ALLOWED_C - self.libm())
             system = {n for n, d in outside.items() if not PHYSLAB_NAME.match(d)
                       and (not ALLOWED_STD.match(d) or FORBIDDEN_STD.match(d))}
             reaching, refused, allowed = set(), set(system), set(inside)
@@ -830,7 +833,7 @@ class Kit:
                 if not more:
                     break
                 reaching |= more
-                allowed = set().union(set(), *(d for m, (d, _) in members.items() if m not in reaching))
+                allowed = set().union(*(d for m, (d, _) in members.items() if m not in reaching))
                 refused = system | (inside - allowed)
             self._api[stage] = allowed
         return self._api[stage]
@@ -952,15 +955,12 @@ def import_problems(kit: Kit, stage: str, obj: Path, own_defined: set) -> list:
     return problems + [f"contains the instruction '{i}', which enters the kernel" for i in kernel_entries(obj)]
 
 
-def refusals_ahead(build: Path, stage: str) -> list:
+def refusals_ahead(kit: Kit, stage: str) -> list:
     """For a student's own build: the grader's import refusals of the lab files as compiled here,
     so a student learns of them before submitting rather than from a grade of 0."""
-    try:
-        kit = Kit(build)
-    except RuntimeError:
+    if kit is None or stage not in kit.stages:
         return []
-    if stage not in kit.stages:
-        return []
+    build = kit.build
     objects = sorted((build / "CMakeFiles" / f"physlab_{stage}_labs.dir").rglob("*.o"))
     own = kit.defined_by([str(o) for o in objects])
     notes = []
