@@ -6,6 +6,7 @@
 
 #include "collision_support.hpp"
 #include "physlab/collision.hpp"
+#include "physlab/error.hpp"
 
 using namespace physlab;
 using namespace physlab::test;
