@@ -62,7 +62,8 @@ ALLOWED_C = frozenset("""
     malloc calloc realloc free aligned_alloc posix_memalign memalign
     memcpy memmove memset memcmp memchr strlen strnlen strcmp strncmp strchr strrchr strstr
     strcpy strncpy strcat strncat strtod strtof strtold strtol strtoll strtoul strtoull
-    atof atoi atol atoll sscanf __isoc99_sscanf __isoc23_sscanf
+    atof atoi atol atoll sscanf __isoc99_sscanf __isoc23_sscanf __isoc99_vsscanf __isoc23_vsscanf
+    __isoc23_strtol __isoc23_strtoll __isoc23_strtoul __isoc23_strtoull
     snprintf sprintf vsnprintf vsprintf printf vprintf puts putchar fprintf vfprintf fputs fputc
     fwrite fflush stdout stderr __printf_chk __vprintf_chk __fprintf_chk __vfprintf_chk
     __snprintf_chk __sprintf_chk __vsnprintf_chk __vsprintf_chk __memcpy_chk __memmove_chk
