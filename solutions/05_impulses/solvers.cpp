@@ -1,5 +1,5 @@
-// Lab 5, sections 5-6: many contact points, sequentially (collision propagation) and
-// simultaneously (Jacobi), with accumulated impulses, clamping and warm starting.
+// Lab 5, sections 5-6: many contact points, sequentially (Gauss-Seidel) and simultaneously
+// (Jacobi), with accumulated impulses, clamping and warm starting.
 #include <algorithm>
 #include <limits>
 
@@ -21,35 +21,37 @@ constexpr double kUnlimited = std::numeric_limits<double>::infinity();
 }  // namespace
 
 int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
+  // Warm start: apply the impulses carried over from the last step
+  for (const Contact& c : contacts) applyImpulse(bodies[c.a], bodies[c.b], c.p, c.j * c.n + c.j_t);
   int sweeps = 0;
-  bool changed = true;
-  while (changed && sweeps < settings.iterations) {
+  while (sweeps < settings.iterations) {
     ++sweeps;
-    changed = false;
+    double largest = 0.0;
     for (Contact& c : contacts) {
       ContactBody &A = bodies[c.a], &B = bodies[c.b];
-      // Give a point that approaches now its full impulse, with the v_rel it has now
+      // Aim at v_rel+ = -epsilon v_rel-, decided before the solve (resting points aim at 0), and
+      // clamp the accumulated total, not the correction: j >= 0, so a sweep may take some back
+      const double v_target = c.v_rel_minus < -settings.restitution_threshold ? -c.epsilon * c.v_rel_minus : 0.0;
       const double v_rel = c.n.dot(relativeVelocity(A, B, c.p));
-      if (v_rel < -settings.tolerance) {
-        changed = true;
-        // Below the threshold a bounce would only be jitter: such points rest (epsilon = 0)
-        const double epsilon = v_rel < -settings.restitution_threshold ? c.epsilon : 0.0;
-        const double j = impulseMagnitude(A, B, c.p, c.n, epsilon);
-        applyImpulse(A, B, c.p, j * c.n);
-        c.j += j;
-      }
-      // Stop the sliding, keeping the accumulated friction inside the cone |j_t| <= mu j
-      if (c.mu > 0.0 && c.j > 0.0) {
+      const double K = inverseEffectiveMass(A, B, c.p, c.n);
+      const double j = std::max(0.0, c.j + (v_target - v_rel) / K);
+      applyImpulse(A, B, c.p, (j - c.j) * c.n);
+      double change = K * std::abs(j - c.j);
+      c.j = j;
+      // Stop the sliding, keeping the accumulated friction inside the cone |j_t| <= mu j of the
+      // normal impulse just found
+      if (c.mu > 0.0) {
         const Vec3 j_t = clampToCone(c.j_t + frictionImpulse(A, B, c.p, c.n, kUnlimited), c.mu * c.j);
-        const Vec3 change = j_t - c.j_t;
-        applyImpulse(A, B, c.p, change);
+        const Vec3 dj_t = j_t - c.j_t;
+        applyImpulse(A, B, c.p, dj_t);
         c.j_t = j_t;
-        // Friction turns the bodies and may make other points approach: sweep again unless
-        // the change of sliding speed it caused is within the tolerance
-        const double size = change.norm();
-        if (size > 0.0 && size * inverseEffectiveMass(A, B, c.p, change / size) > settings.tolerance) changed = true;
+        const double size = dj_t.norm();
+        if (size > 0.0) change = std::max(change, size * inverseEffectiveMass(A, B, c.p, dj_t / size));
       }
+      largest = std::max(largest, change);
     }
+    // Converged when no point's velocity changed by more than the tolerance in a whole sweep
+    if (largest <= settings.tolerance) break;
   }
   return sweeps;
 }

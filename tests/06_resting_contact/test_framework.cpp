@@ -27,7 +27,8 @@ TEST_CASE("resting settings: bad values are refused, every value is printed", "[
   settings.regularization = std::nan("");
   CHECK_THROWS_WITH(LcpContactSolver(settings), Contains("regularization"));
   settings = RestingSettings{};
-  settings.matrix_free = true;  // the default method is pivoting: no matrix-free path
+  settings.method = LcpMethod::Pivoting;
+  settings.matrix_free = true;  // pivoting has no matrix-free path
   CHECK_THROWS_WITH(LcpContactSolver(settings), Contains("matrix_free"));
   settings.method = LcpMethod::Pgs;
   settings.formulation = Formulation::Acceleration;
@@ -39,9 +40,19 @@ TEST_CASE("resting settings: bad values are refused, every value is printed", "[
   settings.formulation = Formulation::Acceleration;
   const std::string line = LcpContactSolver(settings).describe();
   CHECK_THAT(line, Contains("formulation=acceleration") && Contains("lcp=Lemke") && Contains("baumgarte=0.2") &&
-                       Contains("slop=0.002") && Contains("pyramid_directions=4") && Contains("matrix_free=no"));
+                       Contains("slop=0.001") && Contains("pyramid_directions=4") && Contains("matrix_free=no"));
+  // Friction is the one thing the acceleration level and pivoting leave out: the line says so
+  CHECK_THAT(line, Contains("friction ignored"));
   const World world(restingBox(0.0), restingWorldSettings(), std::make_shared<LcpContactSolver>(settings));
-  CHECK_THAT(world.describe(), Contains("restitution_threshold=1") && Contains("resting: formulation=acceleration"));
+  CHECK_THAT(world.describe(), Contains("restitution_threshold=0.05") && Contains("resting: formulation=acceleration"));
+  CHECK_FALSE(LcpContactSolver(settings).bounces());
+  // The defaults model friction (PGS on the cone) and bounces, and say nothing is ignored
+  const LcpContactSolver defaults{RestingSettings{}};
+  CHECK_THAT(defaults.describe(), Contains("lcp=PGS") && !Contains("ignored"));
+  CHECK(defaults.bounces());
+  settings.formulation = Formulation::Velocity;
+  settings.method = LcpMethod::Pivoting;
+  CHECK_THAT(LcpContactSolver(settings).describe(), Contains("friction ignored"));
 }
 
 TEST_CASE("tangent directions: k unit vectors in the tangent plane, evenly spaced, refused for a bad n", "[common]") {

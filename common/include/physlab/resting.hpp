@@ -134,11 +134,11 @@ const char* lcpMethodName(LcpMethod method);
 /// Every knob of the resting-contact solver.
 struct RestingSettings {
   Formulation formulation = Formulation::Velocity;  ///< acceleration or velocity level
-  LcpMethod method = LcpMethod::Pivoting;           ///< the LCP solver
+  LcpMethod method = LcpMethod::Pgs;                ///< the LCP solver (PGS: the one that takes friction as a cone)
   LcpOptions lcp;                                   ///< its options (PGS sweeps, tolerances)
   int pyramid_directions = 4;                       ///< k, friction directions per contact (Lemke)
   double baumgarte = 0.2;                           ///< \f$\beta\f$ in [0, 1] (velocity level)
-  double slop = 0.002;                              ///< overlap left alone [m] (velocity level)
+  double slop = 0.001;                              ///< overlap left alone [m] (velocity level)
   /// Pivoting: added to A's diagonal, relative to its largest diagonal entry (ODE's constraint
   /// force mixing): the four corners of a face are redundant contacts whose clamped block would
   /// otherwise be singular. It changes the forces by about this fraction.
@@ -161,7 +161,14 @@ class LcpContactSolver : public RestingContactSolver {
  public:
   /// Validates the settings (InvalidInput naming the field).
   explicit LcpContactSolver(RestingSettings settings);
+  /// What it solves with, and what it leaves out: "friction ignored" when the method takes no
+  /// friction (pivoting, or the acceleration level), so that a run with \f$\mu > 0\f$ says so.
   std::string describe() const override;
+  /// True at the velocity level: an impulse LCP can aim a colliding point at its bounce. Its
+  /// normal rows then read \f$b_i = v_{rel,i} - \max(-\epsilon_i v^-_{rel,i},\ \frac{\beta}{h}\max(0, depth_i - slop))\f$
+  /// for a colliding point: the bounce or the Baumgarte push, whichever is faster, never both
+  /// (a bounce plus a push would return more energy than came in).
+  bool bounces() const override;
   int solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const std::vector<int>& resting,
             const std::vector<BodyDescription>& descriptions, const std::vector<BodyState>& states, const Vec3& gravity,
             double h) override;
@@ -197,13 +204,12 @@ class LcpContactSolver : public RestingContactSolver {
 
 // ---------------------------------------------------------------------------------------------
 /// \name Scenes for tests and demos
-/// Ground: the plane z <= 0; bodies have epsilon = 0. Resting contact needs
-/// Settings::restitution_threshold above the speed gravity adds in a step (g h = 0.16 m/s at 60 Hz):
-/// restingWorldSettings() sets 1 m/s.
+/// Ground: the plane z <= 0; bodies have epsilon = 0. A body at rest approaches at 0 (World
+/// classifies with the velocities before gravity), so its points are resting at any step size.
 ///@{
 
-/// Lab 5's Settings for resting scenes: restitution threshold 1 m/s, no position correction
-/// (the velocity-level solver has its own), everything else default.
+/// Lab 5's Settings for resting scenes: no position correction (the velocity-level solver has its
+/// own), everything else default (restitution threshold 0.05 m/s).
 Settings restingWorldSettings();
 /// A box (2 kg, half extents 0.3 x 0.2 x 0.1 m) resting on the ground, turned by `yaw` [rad] about z.
 Scene restingBox(double yaw);

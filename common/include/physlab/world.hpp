@@ -26,14 +26,19 @@
 /// | \f$I^{-1}\f$ | `I_inv_world` | world inverse inertia \f$R I_{body}^{-1} R^T\f$ [1/(kg m^2)] |
 /// | \f$K\f$ | `K` | inverse effective mass along a direction (the denominator of j) [1/kg] |
 ///
-/// A step of World runs the phases of the lecture's pipeline, one call each: apply forces ->
-/// broad phase -> narrow phase (manifolds) -> classify contacts by \f$v_{rel}\f$ (colliding,
-/// resting, separating) -> respond -> integrate -> correct positions -> diagnostics. Impulses
+/// A step of World runs the phases of the lecture's pipeline, one call each: broad phase ->
+/// narrow phase (manifolds) -> classify contacts by \f$v_{rel}\f$ (colliding, resting,
+/// separating) -> apply forces -> respond -> integrate -> correct positions -> diagnostics.
+/// Contacts are classified with the velocities that brought the bodies together, before this
+/// step's gravity: that approach speed decides whether a point bounces, so a body resting under
+/// gravity does not (its approach is 0, not \f$g h\f$), and a bounce never returns the speed gravity
+/// added during the step of the impact (the energy it would gain). Impulses
 /// fix velocities only, so overlap left by a step would stay for ever; the position correction
 /// moves each overlapping pair apart along its normal by Settings::position_correction times the
-/// depth beyond Settings::slop, split by inverse mass (as Box2D and Bullet do in some form). Given a RestingContactSolver
-/// (Lab 6), the respond phase hands it the points classified as resting; without one (Lab 5)
-/// the impulse solver handles them too, with \f$\epsilon = 0\f$.
+/// depth beyond Settings::slop, split by inverse mass (as Box2D and Bullet do in some form).
+/// Given a RestingContactSolver (Lab 6), the respond phase hands it the points that are not
+/// colliding (every point, when the solver bounces() itself); without one (Lab 5) the impulse
+/// solver handles them too, with \f$\epsilon = 0\f$.
 #pragma once
 
 #include <cstdint>
@@ -78,6 +83,11 @@ struct BodyState {
   Quat q = Quat::Identity();  ///< orientation, unit quaternion: body -> world
   Vec3 P = Vec3::Zero();      ///< linear momentum [kg m/s]
   Vec3 L = Vec3::Zero();      ///< angular momentum about the centre of mass [kg m^2/s]
+
+  /// The state of `body` at x with orientation q moving at v [m/s] and turning at omega [rad/s]
+  /// (world frame): \f$P = m v\f$, \f$L = R I_{body} R^T \omega\f$; a fixed body gets P = L = 0.
+  /// InvalidInput when a vector is not finite or q is zero.
+  static BodyState moving(const BodyDescription& body, const Vec3& x, const Quat& q, const Vec3& v, const Vec3& omega);
 };
 
 /// How World::step() responds to contacts.
@@ -96,16 +106,18 @@ struct Settings {
   int iterations = 50;                ///< largest number of sweeps over the contact points, >= 1
   double tolerance = 1e-9;            ///< approaching means \f$v_{rel}\f$ < -tolerance; solvers stop when no velocity changes more [m/s], >= 0 (0: stop only when nothing changes)
   double restitution_threshold = 0.05;  ///< points with \f$|v_{rel}|\f$ at most this are resting: \f$\epsilon\f$ = 0 [m/s], >= 0 (0: every approach bounces)
-  /// Simultaneous solver and resting-contact solver: start from last step's impulses (same feature
-  /// ids). The World decides it: when off, the contacts reach the solver with j = 0 and j_t = 0;
-  /// solveSimultaneous() applies whatever j, j_t its contacts carry and never reads this flag.
+  /// Impulse solvers and resting-contact solver: start each point from last step's impulses at
+  /// the same point, found by feature id (Lab 4) or, when the ids changed (a face pair can swap
+  /// its reference face from step to step), as the nearest of the pair's last points within
+  /// 1 cm. The World decides it: when off, the contacts reach the solver with j = 0 and j_t = 0;
+  /// the solvers apply whatever j, j_t their contacts carry and never read this flag.
   bool warm_start = true;
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);  ///< uniform gravitational acceleration, world frame [m/s^2]
   double penalty_k = 1e4;             ///< penalty spring stiffness k [N/m]
   double penalty_d = 0.0;             ///< penalty damping d [N s/m]
   bool use_broad_phase = true;        ///< sort and sweep before the narrow phase (else every pair)
   double position_correction = 0.2;   ///< impulse methods: fraction of each pair's overlap beyond the slop removed per step by moving the bodies apart, in [0, 1] (0: off)
-  double slop = 0.005;                ///< overlap the position correction leaves alone [m]
+  double slop = 0.001;                ///< overlap the position correction leaves alone [m]
 
   /// One line naming every setting and its value.
   std::string toString() const;
@@ -194,15 +206,19 @@ void applyImpulse(ContactBody& A, ContactBody& B, const Vec3& p, const Vec3& J);
 /// \f$j = 0\f$); `j_max` may be infinite (no bound). [N s] Handout: Lab 5, section 4.
 Vec3 frictionImpulse(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double j_max);
 
-/// Sequential impulses (collision propagation): sweeps over the contacts in order; a point that
-/// approaches (\f$v_{rel} <\f$ -settings.tolerance) receives its full impulse
-/// impulseMagnitude() with the *current* \f$v_{rel}\f$ and its epsilon, added to its accumulated
-/// j, and friction clamped so that the accumulated \f$|j_t| \le \mu j\f$ (none while j = 0). Points
-/// approaching no faster than settings.restitution_threshold (\f$v_{rel} \ge\f$ -threshold, resting as
-/// ContactKind has it) use \f$\epsilon = 0\f$. Repeats until a sweep finds no approaching point and
-/// changes no sliding speed by more than settings.tolerance, or after settings.iterations sweeps.
-/// Returns the sweeps made, the final quiet one included: a list where nothing approaches (or no
-/// contacts at all) takes 1.
+/// Sequential impulses (Gauss-Seidel, as Bullet and Box2D solve contacts): first applies the
+/// impulses the contacts arrive with (warm starting: \f$c.j\,\hat n + c.j_t\f$ at each point,
+/// whatever settings.warm_start says). Then sweeps over the contacts in order; each point, with
+/// the velocities the sweep has left so far, aims at the velocity target decided before the solve,
+/// \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$ (v_rel_minus of the contact; 0 when
+/// \f$v_{rel}^- \ge\f$ -settings.restitution_threshold), with the correction
+/// \f$(v_{target} - v_{rel}) / K\f$ added to its accumulated j and the *total* clamped to
+/// \f$j \ge 0\f$ (a sweep may take back what earlier sweeps gave); it applies the change of j,
+/// then its friction, accumulated and clamped to \f$|j_t| \le \mu j\f$ with the j just found.
+/// Repeats until a whole sweep changes no velocity by more than settings.tolerance (a change
+/// \f$\Delta j\f$ along d changes the velocity along d by \f$K \Delta j\f$; normal and friction changes
+/// both count) or settings.iterations sweeps. Returns the sweeps made, the last (quiet) one
+/// included: no contacts at all take 1.
 /// Handout: Lab 5, section 5.
 int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings);
 
@@ -272,8 +288,14 @@ class RestingContactSolver {
   virtual ~RestingContactSolver() = default;
   /// One line naming the solver and its settings, printed with every run.
   virtual std::string describe() const = 0;
+  /// True when the solver answers colliding points too, aiming each (Contact::kind Colliding) at
+  /// its bounce \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$: the World then hands it every point and runs
+  /// no impulses, so that impacts and the weight they land on are solved together. False (the
+  /// default): the World answers colliding points with impulses first and hands it the others.
+  virtual bool bounces() const { return false; }
   /// Changes the velocities of `bodies` over the step h [s] so that the `resting` contacts (indices
-  /// into `contacts`) neither approach nor pull. `bodies` carry the velocities after the applied
+  /// into `contacts`: every point that is not colliding, or every point when bounces()) neither
+  /// approach nor pull. `bodies` carry the velocities after the applied
   /// forces (gravity, `gravity` [m/s^2]) of this step; `states` are the World's states at the
   /// same moment (Lab 6's acceleration-level formulation needs L). Stores each point's impulse over the step in
   /// Contact::j (and friction in Contact::j_t). Returns the solver's iterations or pivots.
@@ -299,10 +321,13 @@ class World {
   std::string describe() const;
   /// Replaces body i's state (validated).
   void setState(int i, const BodyState& state);
-  /// Velocity of body i's centre, \f$P/m\f$ (zero when fixed) [m/s].
+  /// Velocity of body i's centre, \f$P/m\f$ (zero when fixed) [m/s]. InvalidInput when i is not a body.
   Vec3 velocity(int i) const;
-  /// Angular velocity of body i, \f$I^{-1} L\f$ (zero when fixed) [rad/s].
+  /// Angular velocity of body i, \f$I^{-1} L\f$ (zero when fixed) [rad/s]. InvalidInput when i is not a body.
   Vec3 angularVelocity(int i) const;
+  /// The deepest overlap between bodies i and j among the last step's contacts (0 when they did
+  /// not touch), in either order [m]. InvalidInput when i or j is not a body.
+  double depth(int i, int j) const;
   /// The contacts of the last step, as the solver left them.
   const std::vector<Contact>& contacts() const { return contacts_; }
   const Diagnostics& diagnostics() const { return diagnostics_; }  ///< of the last step
@@ -323,6 +348,7 @@ class World {
   void loadContactBodies();
   void storeContactBodies();
   void applyPenaltyForces(std::vector<Contact>& contacts, double h);
+  void requireBody(int i) const;
 
   std::vector<BodyDescription> bodies_;
   std::vector<BodyState> states_;
@@ -333,9 +359,11 @@ class World {
   // Last step's impulses by (A, B, feature id), sorted for binary search: refilled in place
   struct LastImpulse {
     std::tuple<int, int, std::uint32_t> key;
+    Vec3 p;
     double j;
     Vec3 j_t;
   };
+  const LastImpulse* lastImpulse(const Contact& c) const;
   std::vector<LastImpulse> last_impulses_;
   std::vector<int> bounded_, planes_;
   std::vector<Aabb> boxes_;

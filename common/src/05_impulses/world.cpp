@@ -146,8 +146,33 @@ World::World(Scene scene, Settings settings, std::shared_ptr<RestingContactSolve
   broad_phase_ = std::make_unique<SweepAndPrune>();
 }
 
+BodyState BodyState::moving(const BodyDescription& body, const Vec3& x, const Quat& q, const Vec3& v,
+                            const Vec3& omega) {
+  requireFinite(x, "moving state position x");
+  requireFinite(q.coeffs(), "moving state orientation q");
+  if (q.norm() == 0.0) throw InvalidInput("moving state orientation quaternion is zero");
+  requireFinite(v, "moving state velocity v");
+  requireFinite(omega, "moving state angular velocity omega");
+  BodyState state;
+  state.x = x;
+  state.q = q.normalized();
+  if (!body.fixed) {
+    const Mat3 R = state.q.toRotationMatrix();
+    state.P = body.mass * v;
+    state.L = R * body.inertia_body * R.transpose() * omega;
+  }
+  return state;
+}
+
+void World::requireBody(int i) const {
+  if (i < 0 || i >= static_cast<int>(states_.size())) {
+    throw InvalidInput("body index " + std::to_string(i) + " out of range: the world has " +
+                       std::to_string(states_.size()) + " bodies");
+  }
+}
+
 void World::setState(int i, const BodyState& state) {
-  if (i < 0 || i >= static_cast<int>(states_.size())) throw InvalidInput("body index " + std::to_string(i) + " out of range");
+  requireBody(i);
   validateState(state, i);
   states_[i] = state;
   states_[i].q.normalize();
@@ -159,25 +184,38 @@ std::string World::describe() const {
 }
 
 Vec3 World::velocity(int i) const {
-  return bodies_.at(i).fixed ? Vec3::Zero() : Vec3(states_.at(i).P / bodies_[i].mass);
+  requireBody(i);
+  return bodies_[i].fixed ? Vec3::Zero() : Vec3(states_[i].P / bodies_[i].mass);
 }
 
 Vec3 World::angularVelocity(int i) const {
-  if (bodies_.at(i).fixed) return Vec3::Zero();
+  requireBody(i);
+  if (bodies_[i].fixed) return Vec3::Zero();
   const Mat3 R = states_[i].q.toRotationMatrix();
   return R * bodies_[i].inertia_body.inverse() * R.transpose() * states_[i].L;
 }
 
+double World::depth(int i, int j) const {
+  requireBody(i);
+  requireBody(j);
+  double deepest = 0.0;
+  for (const Contact& c : contacts_) {
+    if ((c.a == i && c.b == j) || (c.a == j && c.b == i)) deepest = std::max(deepest, c.depth);
+  }
+  return deepest;
+}
+
 void World::step(double h) {
   requirePositive(h, "step size h");
-  // Gravity: v += g h on every moving body
-  applyForces(h);
   // Candidate pairs whose bounding boxes overlap, plus every moving body against every plane
   findCandidatePairs();
   // Contact manifolds of the candidates, as contact points
   computeContacts();
-  // v_rel at each point: colliding, resting or separating
+  // v_rel at each point with the velocities that brought the bodies together: colliding,
+  // resting or separating
   classifyContacts();
+  // Gravity: v += g h on every moving body
+  applyForces(h);
   // Impulses (or penalty forces) that stop the approach
   respond(h);
   // Positions and orientations with the new velocities
@@ -192,8 +230,12 @@ void World::step(double h) {
 void World::applyForces(double h) {
   if (settings_.gravity.isZero()) return;  // a scene without gravity skips the phase
   PhaseTimer timer(times_.forces);
+  const Vec3 dv = h * settings_.gravity;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (!bodies_[i].fixed) states_[i].P += h * bodies_[i].mass * settings_.gravity;
+    if (bodies_[i].fixed) continue;
+    states_[i].P += bodies_[i].mass * dv;
+    // The solver's copy of the velocities, loaded by classifyContacts(), gets the same change
+    if (!contacts_.empty()) contact_bodies_[i].v += dv;
   }
 }
 
@@ -231,7 +273,7 @@ void World::computeContacts() {
   PhaseTimer timer(times_.narrow_phase);
   // Keep the last step's impulses by (A, B, feature id) for warm starting
   last_impulses_.clear();
-  for (const Contact& c : contacts_) last_impulses_.push_back({{c.a, c.b, c.id}, c.j, c.j_t});
+  for (const Contact& c : contacts_) last_impulses_.push_back({{c.a, c.b, c.id}, c.p, c.j, c.j_t});
   std::sort(last_impulses_.begin(), last_impulses_.end(),
             [](const LastImpulse& x, const LastImpulse& y) { return x.key < y.key; });
   contacts_.clear();
@@ -301,19 +343,35 @@ void World::classifyContacts() {
     }
     c.j = 0.0;
     c.j_t = Vec3::Zero();
-    // Warm start: the simultaneous solver, and a resting-contact solver, begin from last step's impulses
-    const bool warm = settings_.method == ResponseMethod::Simultaneous ||
-                      (resting_solver_ && c.kind == ContactKind::Resting);
+    // Warm start: the impulse solvers, or the resting-contact solver, begin from last step's impulses
+    const bool warm = !resting_solver_ ? settings_.method != ResponseMethod::Penalty
+                                        : resting_solver_->bounces() || c.kind != ContactKind::Colliding;
     if (settings_.warm_start && warm) {
-      const std::tuple<int, int, std::uint32_t> key{c.a, c.b, c.id};
-      const auto last = std::lower_bound(last_impulses_.begin(), last_impulses_.end(), key,
-                                         [](const LastImpulse& x, const auto& k) { return x.key < k; });
-      if (last != last_impulses_.end() && last->key == key) {
+      if (const LastImpulse* last = lastImpulse(c)) {
         c.j = last->j;
         c.j_t = last->j_t;
       }
     }
   }
+}
+
+const World::LastImpulse* World::lastImpulse(const Contact& c) const {
+  // A point farther than this from every last point of its pair is new [m]
+  constexpr double kSamePoint = 0.01;
+  const auto first = std::lower_bound(last_impulses_.begin(), last_impulses_.end(), std::make_tuple(c.a, c.b, 0u),
+                                      [](const LastImpulse& x, const auto& k) { return x.key < k; });
+  const LastImpulse* nearest = nullptr;
+  double best = kSamePoint * kSamePoint;
+  for (auto last = first; last != last_impulses_.end() && std::get<0>(last->key) == c.a && std::get<1>(last->key) == c.b;
+       ++last) {
+    if (std::get<2>(last->key) == c.id) return &*last;
+    const double distance = (last->p - c.p).squaredNorm();
+    if (distance <= best) {
+      best = distance;
+      nearest = &*last;
+    }
+  }
+  return nearest;
 }
 
 void World::respond(double h) {
@@ -322,9 +380,12 @@ void World::respond(double h) {
   {
     PhaseTimer timer(times_.respond);
     // Without a resting-contact solver the impulses answer every point; with one, only the
-    // colliding points, and the solver takes the resting ones
+    // colliding points, and the solver takes the others (or every point, when it bounces itself)
     std::vector<Contact>* answered = &contacts_;
-    if (resting_solver_) {
+    if (resting_solver_ && resting_solver_->bounces()) {
+      colliding_.clear();
+      answered = &colliding_;
+    } else if (resting_solver_) {
       colliding_.clear();
       for (const Contact& c : contacts_) {
         if (c.kind == ContactKind::Colliding) colliding_.push_back(c);
@@ -344,7 +405,7 @@ void World::respond(double h) {
           break;
       }
     }
-    if (resting_solver_) {
+    if (resting_solver_ && !resting_solver_->bounces()) {
       std::size_t next = 0;
       for (Contact& c : contacts_) {
         if (c.kind == ContactKind::Colliding) c = colliding_[next++];
@@ -359,8 +420,11 @@ void World::respond(double h) {
 void World::solveRestingContacts(double h) {
   if (!resting_solver_) return;
   resting_.clear();
+  // Separating points go too: the solver leaves a point alone when nothing pushes it together,
+  // and a point that separates slowly (as overlap is pushed out) still needs its support
+  const bool every = resting_solver_->bounces();
   for (int k = 0; k < static_cast<int>(contacts_.size()); ++k) {
-    if (contacts_[k].kind == ContactKind::Resting) resting_.push_back(k);
+    if (every || contacts_[k].kind != ContactKind::Colliding) resting_.push_back(k);
   }
   if (resting_.empty()) return;  // nothing rests: the solver is not run
   PhaseTimer timer(times_.resting);

@@ -83,7 +83,28 @@ LcpContactSolver::LcpContactSolver(RestingSettings settings) : settings_(setting
   }
 }
 
-std::string LcpContactSolver::describe() const { return settings_.toString(); }
+std::string LcpContactSolver::describe() const {
+  const bool frictionless = settings_.method == LcpMethod::Pivoting || settings_.formulation == Formulation::Acceleration;
+  return settings_.toString() + (frictionless ? " (friction ignored)" : "");
+}
+
+bool LcpContactSolver::bounces() const { return settings_.formulation == Formulation::Velocity; }
+
+namespace {
+
+// The relative normal velocity of contact c's points now [m/s].
+double normalVelocity(const std::vector<ContactBody>& bodies, const Contact& c) {
+  const ContactBody &A = bodies[static_cast<std::size_t>(c.a)], &B = bodies[static_cast<std::size_t>(c.b)];
+  return c.n.dot(A.v + A.omega.cross(c.p - A.x) - B.v - B.omega.cross(c.p - B.x));
+}
+
+// A colliding point's normal bias aims at its bounce when that is faster than the push apart
+double bounceBias(double bias, const std::vector<ContactBody>& bodies, const Contact& c) {
+  if (c.kind != ContactKind::Colliding) return bias;
+  return std::min(bias, normalVelocity(bodies, c) + c.epsilon * c.v_rel_minus);
+}
+
+}  // namespace
 
 int LcpContactSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
                             const std::vector<int>& resting, const std::vector<BodyDescription>& descriptions,
@@ -132,6 +153,10 @@ int LcpContactSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contac
   if (velocity_level) {
     b = velocityBias(bodies, rows_, Eigen::Map<const VecX>(depths.data(), static_cast<Index>(depths.size())), h,
                      settings_.baumgarte, settings_.slop);
+    for (Index i = 0; i < m; ++i) {
+      const Index row = cone ? 3 * i : i;
+      b(row) = bounceBias(b(row), bodies, contacts[resting[static_cast<std::size_t>(i)]]);
+    }
   } else {
     loads_.assign(bodies.size(), AppliedLoads{});
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -231,7 +256,7 @@ int LcpContactSolver::solveConeMatrixFree(std::vector<ContactBody>& bodies, std:
       }
       pt.bias[i] = pt.d[i].dot(v_rel);
     }
-    pt.bias[0] -= beta_h * std::max(0.0, c.depth - settings_.slop);
+    pt.bias[0] = bounceBias(pt.bias[0] - beta_h * std::max(0.0, c.depth - settings_.slop), bodies, c);
     const double a_to = (A.inv_mass + B.inv_mass) * pt.d[1].dot(pt.d[2]) + pt.ang_a[1].dot(pt.turn_a[2]) +
                         pt.ang_b[1].dot(pt.turn_b[2]);
     pt.inv_diag_n = 1.0 / pt.diag[0];

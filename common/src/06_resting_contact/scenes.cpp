@@ -36,7 +36,6 @@ void addCube(Scene& scene, double mass, const Vec3& x, double mu = 0.5) {
 
 Settings restingWorldSettings() {
   Settings settings;
-  settings.restitution_threshold = 1.0;
   // The velocity-level solver corrects positions itself (Baumgarte); the acceleration level
   // shows what happens without
   settings.position_correction = 0.0;

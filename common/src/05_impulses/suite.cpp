@@ -1,0 +1,394 @@
+// The textbook contact scenes of contact_suite.hpp: bodies, what each measures, and the truth.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "physlab/contact_suite.hpp"
+#include "physlab/rigid.hpp"
+
+namespace physlab {
+
+double Measure::score() const { return std::abs(value - expected) / tolerance; }
+
+bool Measure::pass() const { return score() <= 1.0; }
+
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+const Vec3 kBoxHalf(0.2, 0.2, 0.1);  // the drop box: 0.4 x 0.4 x 0.2 m, 1 kg
+constexpr double kCube = 0.1;        // half edge of the cubes of stacks and ramps [m]
+// Bodies that start at rest on others overlap by a hair, so that round-off cannot open a gap and
+// lose the contact for a step (contacts exist only at depth >= 0)
+constexpr double kTouch = kCube - 1e-6;
+
+BodyState at(const Vec3& x, const Quat& q = Quat::Identity()) {
+  BodyState s;
+  s.x = x;
+  s.q = q;
+  return s;
+}
+
+Scene ground(double epsilon, double mu) {
+  Scene scene;
+  scene.bodies.push_back(BodyDescription::plane(Vec3::UnitZ(), 0.0, epsilon, mu));
+  scene.states.push_back(BodyState{});
+  return scene;
+}
+
+// acc = max(acc, x), where NaN (a state that stopped being finite) wins for good
+void keepLargest(double& acc, double x) { acc = std::isnan(acc) || std::isnan(x) ? kNaN : std::max(acc, x); }
+
+// Height of a body's lowest point above the plane through the origin with unit normal n [m].
+double lowest(const BodyDescription& body, const BodyState& s, const Vec3& n = Vec3::UnitZ()) {
+  if (const auto* sphere = std::get_if<Sphere>(&body.shape)) return n.dot(s.x) - sphere->radius;
+  const Vec3 half = std::get<Box>(body.shape).half_extents;
+  // The support of the box along -n: |R^T n| weighted by the half extents
+  const Vec3 local = s.q.conjugate() * n;
+  return n.dot(s.x) - local.cwiseAbs().dot(half);
+}
+
+// Angle between a body's z axis and the world's z axis [degrees].
+double tilt(const BodyState& s) {
+  const double c = std::clamp((s.q * Vec3::UnitZ()).z(), -1.0, 1.0);
+  return std::acos(c) * 180.0 / M_PI;
+}
+
+// Kinetic plus potential energy of the moving bodies [J].
+double energy(const Scene& scene, const std::vector<BodyState>& states) {
+  double e = 0.0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const BodyDescription& body = scene.bodies[i];
+    if (body.fixed) continue;
+    const BodyState& s = states[i];
+    const Mat3 R = s.q.toRotationMatrix();
+    const Vec3 omega = R * body.inertia_body.inverse() * R.transpose() * s.L;
+    e += 0.5 * s.P.squaredNorm() / body.mass + 0.5 * omega.dot(s.L) + body.mass * kG * s.x.z();
+  }
+  return e;
+}
+
+// The apex of the first rebound of a body's lowest point: falls, turns upwards, rises, turns down.
+class Rebound {
+ public:
+  void observe(double height) {
+    if (phase_ == Phase::Falling && height > last_ + kRise) phase_ = Phase::Rising;
+    if (phase_ == Phase::Rising) {
+      apex_ = std::max(apex_, height);
+      if (height < apex_ - kRise) phase_ = Phase::Done;
+    }
+    last_ = height;
+  }
+  // The apex, or NaN when the body never rose again
+  double apex() const { return phase_ == Phase::Falling ? kNaN : apex_; }
+
+ private:
+  enum class Phase { Falling, Rising, Done };
+  static constexpr double kRise = 1e-6;  // a move smaller than this is rest, not a rebound [m]
+  Phase phase_ = Phase::Falling;
+  double last_ = std::numeric_limits<double>::infinity();
+  double apex_ = -std::numeric_limits<double>::infinity();
+};
+
+// ----- drops -----------------------------------------------------------------------------------
+
+// A body dropped from rest onto the ground: rebound apex over drop height is epsilon^2.
+class Drop : public SuiteScene {
+ public:
+  Drop(std::string name, BodyDescription body, double height, double epsilon, bool box)
+      : name_(std::move(name)), body_(std::move(body)), height_(height), epsilon_(epsilon), box_(box) {}
+  std::string name() const override { return name_; }
+  Scene scene() const override {
+    Scene scene = ground(epsilon_, body_.mu);
+    scene.bodies.push_back(body_);
+    const double lift = box_ ? kBoxHalf.z() : std::get<Sphere>(body_.shape).radius;
+    scene.states.push_back(at(Vec3(0.0, 0.0, height_ + lift)));
+    return scene;
+  }
+  double duration() const override { return 2.0 * std::sqrt(2.0 * height_ / kG) + 0.5; }
+  void observe(double, const std::vector<BodyState>& states) override {
+    rebound_.observe(lowest(body_, states[1]));
+    keepLargest(turn_, tilt(states[1]));
+  }
+  std::vector<Measure> measures() const override {
+    std::vector<Measure> m{{"rebound / drop height", rebound_.apex() / height_, epsilon_ * epsilon_,
+                            0.1 * epsilon_ * epsilon_,
+                            "10 %: the impact happens inside a step; the time discretisation alone moves it a few per cent"}};
+    if (box_) m.push_back({"largest tilt [deg]", turn_, 0.0, 1.0, "1 degree: a symmetric impact gives no torque"});
+    return m;
+  }
+
+ private:
+  std::string name_;
+  BodyDescription body_;
+  double height_, epsilon_;
+  bool box_;
+  Rebound rebound_;
+  double turn_ = 0.0;
+};
+
+// A box dropped turned on two axes: no exact rebound, but it may never gain energy, and it rests.
+class TiltedDrop : public SuiteScene {
+ public:
+  explicit TiltedDrop(double epsilon) : epsilon_(epsilon) {}
+  std::string name() const override { return "tilted drop, e = " + std::to_string(epsilon_).substr(0, 3); }
+  Scene scene() const override {
+    Scene scene = ground(epsilon_, 0.5);
+    scene.bodies.push_back(BodyDescription::box(1.0, kBoxHalf, epsilon_, 0.5));
+    const Quat q = Quat(Eigen::AngleAxisd(0.5, Vec3::UnitX())) * Quat(Eigen::AngleAxisd(0.2, Vec3::UnitY()));
+    BodyState s = at(Vec3::Zero(), q);
+    s.x.z() = 0.5 - lowest(scene.bodies[1], s);
+    scene.states.push_back(s);
+    return scene;
+  }
+  double duration() const override { return 4.0; }
+  void observe(double t, const std::vector<BodyState>& states) override {
+    const double e = energy(scene_, states);
+    if (t == 0.0) start_ = e;
+    keepLargest(gain_, (e - start_) / start_);
+    speed_ = states[1].P.norm() / scene_.bodies[1].mass;
+  }
+  std::vector<Measure> measures() const override {
+    return {{"largest energy gain / start", gain_, 0.0, 0.01,
+             "1 %: pushing overlap apart lifts the box by the overlap, a fraction of a per cent of its energy"},
+            {"speed after 4 s [m/s]", speed_, 0.0, 0.01, "0.01 m/s: the box must have come to rest"}};
+  }
+
+ private:
+  double epsilon_;
+  Scene scene_ = scene();
+  double start_ = 0.0, gain_ = 0.0, speed_ = kNaN;
+};
+
+// ----- friction ----------------------------------------------------------------------------------
+
+// A cube at rest on a ramp tilted by theta, friction mu: sticks when tan theta < mu, else slides
+// at a = g (sin theta - mu cos theta).
+class Ramp : public SuiteScene {
+ public:
+  Ramp(double theta_deg, double mu) : theta_(theta_deg * M_PI / 180.0), theta_deg_(theta_deg), mu_(mu) {}
+  std::string name() const override {
+    return "ramp " + std::to_string(static_cast<int>(theta_deg_)) + " deg, mu = " + std::to_string(mu_).substr(0, 3);
+  }
+  Scene scene() const override {
+    const Quat tilt(Eigen::AngleAxisd(-theta_, Vec3::UnitY()));
+    Scene scene;
+    scene.bodies.push_back(BodyDescription::plane(tilt * Vec3::UnitZ(), 0.0, 0.0, mu_));
+    scene.states.push_back(BodyState{});
+    scene.bodies.push_back(BodyDescription::box(1.0, Vec3::Constant(kCube), 0.0, mu_));
+    scene.states.push_back(at(kTouch * (tilt * Vec3::UnitZ()), tilt));
+    return scene;
+  }
+  double duration() const override { return 1.0; }
+  void observe(double t, const std::vector<BodyState>& states) override {
+    const Vec3 down_slope = Quat(Eigen::AngleAxisd(-theta_, Vec3::UnitY())) * -Vec3::UnitX();
+    if (t == 0.0) start_ = states[1].x;
+    travel_ = down_slope.dot(states[1].x - start_);
+    time_ = t;
+  }
+  std::vector<Measure> measures() const override {
+    if (std::tan(theta_) < mu_) {
+      return {{"slid in 1 s [m]", travel_, 0.0, 0.002, "2 mm: the block must stick; settling into the slop moves it less"}};
+    }
+    const double a = kG * (std::sin(theta_) - mu_ * std::cos(theta_));
+    return {{"acceleration [m/s^2]", 2.0 * travel_ / (time_ * time_), a, 0.05 * a,
+             "5 %: symplectic Euler's distance is off by a step's worth, under 2 % in 1 s"}};
+  }
+
+ private:
+  double theta_, theta_deg_, mu_;
+  Vec3 start_ = Vec3::Zero();
+  double travel_ = kNaN, time_ = 0.0;
+};
+
+// A sphere thrown along the ground without spin: friction turns sliding into rolling at 5/7 v0
+// (angular momentum about the contact point is conserved), and energy only falls.
+class RollingBall : public SuiteScene {
+ public:
+  std::string name() const override { return "thrown ball, mu = 0.3"; }
+  Scene scene() const override {
+    Scene scene = ground(0.0, 0.3);
+    scene.bodies.push_back(BodyDescription::sphere(1.0, 0.1, 0.0, 0.3));
+    scene.states.push_back(BodyState::moving(scene.bodies[1], Vec3(0.0, 0.0, 0.1 - 1e-6), Quat::Identity(),
+                                             Vec3(kV0, 0.0, 0.0), Vec3::Zero()));
+    return scene;
+  }
+  double duration() const override { return 2.0; }
+  void observe(double t, const std::vector<BodyState>& states) override {
+    const double e = energy(scene_, states);
+    if (t == 0.0) start_ = e;
+    keepLargest(gain_, (e - start_) / start_);
+    speed_ = states[1].P.x();
+  }
+  std::vector<Measure> measures() const override {
+    return {{"final speed / (5/7 v0)", speed_ / (5.0 / 7.0 * kV0), 1.0, 0.02,
+             "2 %: rolling is exact once reached; the last sliding step overshoots by at most mu g h / v"},
+            {"largest energy gain / start", gain_, 0.0, 1e-3, "0.1 %: friction only removes energy"}};
+  }
+
+ private:
+  static constexpr double kV0 = 2.0;
+  Scene scene_ = scene();
+  double start_ = 0.0, gain_ = 0.0, speed_ = kNaN;
+};
+
+// ----- weight ------------------------------------------------------------------------------------
+
+// n cubes stacked on the ground: they stand, and sink no more than the overlap an engine keeps.
+class Stack : public SuiteScene {
+ public:
+  explicit Stack(int n) : n_(n) {}
+  std::string name() const override { return "stack of " + std::to_string(n_) + " cubes"; }
+  Scene scene() const override {
+    Scene scene = ground(0.0, 0.5);
+    for (int i = 0; i < n_; ++i) {
+      scene.bodies.push_back(BodyDescription::box(1.0, Vec3::Constant(kCube), 0.0, 0.5));
+      scene.states.push_back(at(Vec3(0.0, 0.0, (2 * i + 1) * kTouch)));
+    }
+    return scene;
+  }
+  double duration() const override { return 3.0; }
+  void observe(double, const std::vector<BodyState>& states) override {
+    drift_ = 0.0;
+    for (int i = 1; i <= n_; ++i) drift_ = std::max(drift_, states[i].x.head<2>().norm());
+    sink_ = (2 * n_ - 1) * kCube - states[n_].x.z();
+  }
+  std::vector<Measure> measures() const override {
+    return {{"top cube sunk [m]", sink_, 0.0, 0.005, "5 mm over 10 contacts: half a millimetre of overlap each"},
+            {"largest sideways drift [m]", drift_, 0.0, 0.01, "1 cm: nothing pushes sideways; a stack that leans falls"}};
+  }
+
+ private:
+  int n_;
+  double sink_ = kNaN, drift_ = kNaN;
+};
+
+// A cube 100 times heavier resting on a light one: the light cube must carry it.
+class HeavyOnLight : public SuiteScene {
+ public:
+  std::string name() const override { return "heavy on light, 100:1"; }
+  Scene scene() const override {
+    Scene scene = ground(0.0, 0.5);
+    scene.bodies.push_back(BodyDescription::box(1.0, Vec3::Constant(kCube), 0.0, 0.5));
+    scene.states.push_back(at(Vec3(0.0, 0.0, kTouch)));
+    scene.bodies.push_back(BodyDescription::box(100.0, Vec3::Constant(kCube), 0.0, 0.5));
+    scene.states.push_back(at(Vec3(0.0, 0.0, 3.0 * kTouch)));
+    return scene;
+  }
+  double duration() const override { return 3.0; }
+  void observe(double, const std::vector<BodyState>& states) override {
+    overlap_ = 2.0 * kCube - (states[2].x.z() - states[1].x.z());
+    drift_ = (states[2].x - states[1].x).head<2>().norm();
+  }
+  std::vector<Measure> measures() const override {
+    return {{"heavy into light [m]", overlap_, 0.0, 0.005, "5 mm: a few slops; sinking through is metres"},
+            {"sideways drift [m]", drift_, 0.0, 0.01, "1 cm: nothing pushes sideways"}};
+  }
+
+ private:
+  double overlap_ = kNaN, drift_ = kNaN;
+};
+
+// A cube placed 5 cm into the ground: pushed out, without being thrown into the air.
+class OverlapRecovery : public SuiteScene {
+ public:
+  std::string name() const override { return "overlap recovery, 5 cm"; }
+  Scene scene() const override {
+    Scene scene = ground(0.0, 0.5);
+    scene.bodies.push_back(BodyDescription::box(1.0, Vec3::Constant(kCube), 0.0, 0.5));
+    scene.states.push_back(at(Vec3(0.0, 0.0, kCube - 0.05)));
+    return scene;
+  }
+  double duration() const override { return 2.0; }
+  void observe(double, const std::vector<BodyState>& states) override {
+    const double bottom = lowest(scene_.bodies[1], states[1]);
+    keepLargest(jump_, bottom);
+    left_ = -bottom;
+  }
+  std::vector<Measure> measures() const override {
+    return {{"highest jump [m]", jump_, 0.0, 0.01, "1 cm: removing overlap must not throw the cube"},
+            {"overlap after 2 s [m]", left_, 0.0, 0.005, "5 mm: the overlap is removed, up to the slop"}};
+  }
+
+ private:
+  Scene scene_ = scene();
+  double jump_ = -std::numeric_limits<double>::infinity(), left_ = kNaN;
+};
+
+// A row of dominoes, the first leaning: each starts falling (tilts past 20 degrees) after the one
+// before it, one at a time.
+class Dominoes : public SuiteScene {
+ public:
+  std::string name() const override { return "dominoes, 8 in a row"; }
+  Scene scene() const override {
+    Scene scene = ground(0.0, 0.5);
+    for (int i = 0; i < kCount; ++i) {
+      scene.bodies.push_back(BodyDescription::box(0.1, kHalf, 0.0, 0.5));
+      // The first leans 10 degrees towards the others, on its edge
+      BodyState s = at(Vec3(kSpacing * i, 0.0, 0.0), Quat(Eigen::AngleAxisd(i == 0 ? 0.175 : 0.0, Vec3::UnitY())));
+      s.x.z() = -lowest(scene.bodies.back(), s) - 1e-6;
+      scene.states.push_back(s);
+    }
+    return scene;
+  }
+  double duration() const override { return 3.0; }
+  void observe(double t, const std::vector<BodyState>& states) override {
+    for (int i = 0; i < kCount; ++i) {
+      if (fell_[i] < 0.0 && tilt(states[i + 1]) > 20.0) fell_[i] = t;
+    }
+  }
+  std::vector<Measure> measures() const override {
+    // A domino that never fell, or fell no later than the one before it, is out of order
+    int wrong = 0;
+    for (int i = 0; i < kCount; ++i) {
+      if (fell_[i] < 0.0 || (i > 0 && fell_[i] <= fell_[i - 1])) ++wrong;
+    }
+    return {{"dominoes out of order", static_cast<double>(wrong), 0.0, 0.5,
+             "none: each is pushed by the one before, so it falls a step later at least"}};
+  }
+
+ private:
+  static constexpr int kCount = 8;
+  static constexpr double kSpacing = 0.12;  // centre to centre [m]
+  inline static const Vec3 kHalf{0.01, 0.05, 0.1};
+  double fell_[kCount] = {-1.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0};
+};
+
+}  // namespace
+
+std::vector<std::unique_ptr<SuiteScene>> contactSuite() {
+  std::vector<std::unique_ptr<SuiteScene>> suite;
+  for (const double e : {0.5, 0.9}) {
+    suite.push_back(std::make_unique<Drop>("flat drop, e = " + std::to_string(e).substr(0, 3),
+                                           BodyDescription::box(1.0, kBoxHalf, e, 0.5), 0.5, e, true));
+  }
+  // Hitting at 0.9 m/s: a bounce far below the speed one step of gravity adds at 60 Hz, times six
+  const double slow = 0.9 * 0.9 / (2.0 * kG);
+  suite.push_back(std::make_unique<Drop>("slow flat drop, e = 0.9", BodyDescription::box(1.0, kBoxHalf, 0.9, 0.5),
+                                         slow, 0.9, true));
+  suite.push_back(std::make_unique<Drop>("slow ball, e = 0.9", BodyDescription::sphere(1.0, 0.1, 0.9, 0.5), slow,
+                                         0.9, false));
+  suite.push_back(std::make_unique<Drop>("ball, e = 0.5", BodyDescription::sphere(1.0, 0.1, 0.5, 0.5), 1.0, 0.5,
+                                         false));
+  suite.push_back(std::make_unique<TiltedDrop>(0.5));
+  suite.push_back(std::make_unique<Ramp>(24.0, 0.5));
+  suite.push_back(std::make_unique<Ramp>(35.0, 0.5));
+  suite.push_back(std::make_unique<RollingBall>());
+  suite.push_back(std::make_unique<Stack>(10));
+  suite.push_back(std::make_unique<HeavyOnLight>());
+  suite.push_back(std::make_unique<OverlapRecovery>());
+  suite.push_back(std::make_unique<Dominoes>());
+  return suite;
+}
+
+std::vector<Measure> runSuiteScene(SuiteScene& scene, World& world) {
+  const int steps = static_cast<int>(std::lround(scene.duration() / kSuiteStep));
+  scene.observe(0.0, world.states());
+  for (int k = 1; k <= steps; ++k) {
+    world.step(kSuiteStep);
+    scene.observe(k * kSuiteStep, world.states());
+  }
+  return scene.measures();
+}
+
+}  // namespace physlab
