@@ -290,7 +290,7 @@ void convergenceChart(const DemoOptions& options, std::vector<std::string>& writ
   chart.logX().logY();
   const int most = options.quick ? 256 : 4096;
   // The stack at rest, the same for both solvers: settled by the simultaneous one, which brings
-  // it to rest (the sequential one leaves it sliding, see the stack chart)
+  // it to rest
   Scene rest;
   const bool settled = attempt("convergence, the resting stack", [&] {
     rest = boxStack(boxes, 0.0);  // needs Lab 3's boxInertia: inside the attempt
