@@ -1,0 +1,87 @@
+// Framework tests for Lab 5's World API: states from velocities, per-pair depths, body indices
+// and the pipeline's classification before gravity. They grade nothing (the code lives in
+// common/), so they carry [common].
+#include <cmath>
+
+#include "physlab/error.hpp"
+#include "physlab/rigid.hpp"
+#include "physlab/world.hpp"
+#include "support.hpp"
+
+using namespace physlab;
+using Catch::Matchers::Contains;
+
+TEST_CASE("world api: BodyState::moving gives P = m v and L = R I R^T omega, zero for a fixed body", "[common]") {
+  const BodyDescription box = BodyDescription::box(2.0, Vec3(0.3, 0.2, 0.1), 0.5, 0.5);
+  const Quat q(test::randomRotation());
+  const Vec3 x = test::randomVec3(1.0), v = test::randomVec3(2.0), omega = test::randomVec3(2.0);
+  const BodyState s = BodyState::moving(box, x, q, v, omega);
+  const Mat3 R = q.toRotationMatrix();
+  CHECK(s.x == x);
+  // A rotation matrix and two products: round-off on values of order 1.
+  CHECK((s.P - 2.0 * v).norm() <= 1e-14);
+  CHECK((s.L - R * box.inertia_body * R.transpose() * omega).norm() <= 1e-13);
+  // The World reads the same velocities back
+  Scene scene;
+  scene.bodies = {box};
+  scene.states = {s};
+  const World world(scene);
+  CHECK((world.velocity(0) - v).norm() <= 1e-13);
+  CHECK((world.angularVelocity(0) - omega).norm() <= 1e-12);
+  // A fixed body has no momentum, whatever it is given; the quaternion comes back normalised
+  BodyDescription wall = BodyDescription::fixedBox(Vec3::Constant(1.0), 0.5, 0.5);
+  const BodyState still = BodyState::moving(wall, x, Quat(2.0, 0.0, 0.0, 0.0), v, omega);
+  CHECK(still.P == Vec3::Zero());
+  CHECK(still.L == Vec3::Zero());
+  CHECK(still.q.norm() == Approx(1.0).epsilon(1e-15));
+  CHECK_THROWS_WITH(BodyState::moving(box, x, q, Vec3(std::nan(""), 0.0, 0.0), omega), Contains("velocity v"));
+  CHECK_THROWS_WITH(BodyState::moving(box, x, Quat(0.0, 0.0, 0.0, 0.0), v, omega), Contains("quaternion is zero"));
+}
+
+TEST_CASE("world api: a body index outside the world is refused with InvalidInput naming it", "[common]") {
+  const World world(bouncingBall(1.0, 0.5));
+  for (const int i : {-1, 2}) {
+    CHECK_THROWS_WITH(world.velocity(i), Contains("body index " + std::to_string(i)) && Contains("2 bodies"));
+    CHECK_THROWS_AS(world.angularVelocity(i), InvalidInput);
+    CHECK_THROWS_AS(world.depth(0, i), InvalidInput);
+    CHECK_THROWS_AS(world.depth(i, 0), InvalidInput);
+  }
+  // Both ends of the range are bodies
+  CHECK_NOTHROW(world.velocity(0));
+  CHECK_NOTHROW(world.velocity(1));
+}
+
+TEST_CASE("world api: depth(i, j) is the deepest point of the pair in either order, 0 apart", "[common]") {
+  // A box resting 3 mm deep in the ground, tilted so that its corners have different depths
+  Scene scene = bouncingBall(1.0, 0.0);
+  scene.bodies[1] = BodyDescription::box(1.0, Vec3(0.2, 0.2, 0.1), 0.0, 0.5);
+  scene.states[1].q = Quat(Eigen::AngleAxisd(0.01, Vec3::UnitX()));
+  scene.states[1].x = Vec3(0.0, 0.0, 0.1 - 0.003);
+  World world(scene);
+  CHECK(world.depth(0, 1) == 0.0);  // no step yet: no contacts
+  world.step(1.0 / 60.0);
+  double deepest = 0.0;
+  for (const Contact& c : world.contacts()) deepest = std::max(deepest, c.depth);
+  REQUIRE(world.contacts().size() == 4);
+  CHECK(world.depth(0, 1) == deepest);
+  CHECK(world.depth(1, 0) == deepest);
+  CHECK(world.depth(1, 1) == 0.0);  // a body never touches itself
+  // The tilt puts one edge deeper: 0.2 m x sin(0.01) = 2 mm more than the centre's 3 mm
+  CHECK(deepest == Approx(0.003 + 0.2 * std::sin(0.01)).epsilon(1e-3));
+}
+
+TEST_CASE("world api: a body at rest on the ground is resting, not colliding, at any step size", "[common]") {
+  // Classified with the velocity before gravity: 0, whatever g h is
+  for (const double h : {1.0 / 240.0, 1.0 / 60.0, 1.0 / 10.0}) {
+    Scene scene = bouncingBall(0.0, 0.9);
+    scene.states[1].x.z() -= 1e-6;  // touching by a hair
+    World world(scene);
+    world.step(h);
+    CAPTURE(h);
+    REQUIRE(world.diagnostics().contacts == 1);
+    CHECK(world.contacts()[0].kind == ContactKind::Resting);
+    CHECK(world.contacts()[0].v_rel_minus == 0.0);
+    // It stays: the resting point takes gravity's impulse, no bounce
+    CHECK(std::abs(world.velocity(1).z()) <= 1e-12);
+  }
+}
