@@ -44,12 +44,14 @@ TEST_CASE("resting settings: bad values are refused, every value is printed", "[
   // Friction is the one thing the acceleration level and pivoting leave out: the line says so
   CHECK_THAT(line, Contains("friction ignored"));
   const World world(restingBox(0.0), restingWorldSettings(), std::make_shared<LcpContactSolver>(settings));
-  CHECK_THAT(world.describe(), Contains("restitution_threshold=0.05") && Contains("resting: formulation=acceleration"));
+  CHECK_THAT(world.describe(), Contains("restitution_threshold=0.05") && Contains("colliding points: impulses, resting: formulation=acceleration"));
   CHECK_FALSE(LcpContactSolver(settings).bounces());
   // The defaults model friction (PGS on the cone) and bounces, and say nothing is ignored
   const LcpContactSolver defaults{RestingSettings{}};
   CHECK_THAT(defaults.describe(), Contains("lcp=PGS") && !Contains("ignored"));
   CHECK(defaults.bounces());
+  const World bouncing(restingBox(0.0), restingWorldSettings(), std::make_shared<LcpContactSolver>(RestingSettings{}));
+  CHECK_THAT(bouncing.describe(), Contains("every point (bounces too): formulation=velocity lcp=PGS"));
   settings.formulation = Formulation::Velocity;
   settings.method = LcpMethod::Pivoting;
   CHECK_THAT(LcpContactSolver(settings).describe(), Contains("friction ignored"));

@@ -180,7 +180,11 @@ void World::setState(int i, const BodyState& state) {
 }
 
 std::string World::describe() const {
-  return resting_solver_ ? settings_.toString() + " resting: " + resting_solver_->describe() : settings_.toString();
+  if (!resting_solver_) return settings_.toString();
+  // Name who answers what: with a bouncing solver the impulse method is not used at all
+  return settings_.toString() +
+         (resting_solver_->bounces() ? " every point (bounces too): " : " colliding points: impulses, resting: ") +
+         resting_solver_->describe();
 }
 
 Vec3 World::velocity(int i) const {
