@@ -103,7 +103,7 @@ VecX velocityBias(const std::vector<ContactBody>& bodies, const std::vector<Cont
 /// and `b` are contactMatrix() and velocityBias() of the rows ordered as the m normals, then
 /// contact 0's k directions, contact 1's k directions, ...; the result has size m + m k + m with
 /// unknowns \f$(\lambda_n, \beta, \gamma)\f$ in that order. InvalidInput on sizes that do not
-/// fit (A not (m + m k) square, b, mu of size m), k < 3 or a negative \f$\mu\f$.
+/// fit (m is mu's size; A must be (m + m k) square and b of size m + m k), k < 3 or a negative \f$\mu\f$.
 /// Handout: Lab 6, section 8.
 LcpProblem frictionPyramid(const MatX& A, const VecX& b, const VecX& mu, int k);
 ///@}
