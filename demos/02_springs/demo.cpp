@@ -93,7 +93,8 @@ void stabilityChart(const DemoOptions& options, std::vector<std::string>& writte
   const int points = options.quick ? 4 : 11;
   for (const auto& [name, step] : methods) {
     Series s{name, {}, {}, "linespoints"};
-    attempt(name, [&] {
+    // Structured bindings are captured by name only from C++20: give the lambda its own references
+    attempt(name, [&, &name = name, &step = step] {
       for (int p = 0; p < points; ++p) {
         const double k = std::pow(10.0, 1.0 + 5.0 * p / (points - 1));
         const SpringSystem sys(chain(n, m, k));
@@ -132,7 +133,7 @@ void clothEnergyChart(const DemoOptions& options, std::vector<std::string>& writ
   for (const auto& [name, step, h] : runs) {
     // The long step dashed: the same method, so the same colour
     Series s{name, {}, {}, h > 1.0 / 100 ? "lines dt 2" : "lines"};
-    attempt(name, [&, &step = step, h = h] {
+    attempt(name, [&, &name = name, &step = step, h = h] {
       VecX X = sys.restState();
       const double E0 = sys.energy(X);
       const long steps = std::lround(T / h);
