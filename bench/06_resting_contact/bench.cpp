@@ -18,7 +18,7 @@
 //   slop, warm starting 0.85, collision margin 0.04 m (boxes keep their
 //   outer size; the margin is clipped to a tenth of the smallest half extent), contact
 //   breaking threshold 0.02 m.
-// - ODE QuickStep: 20 iterations, ERP 0.2, CFM 1e-5 (ODE's defaults), surface layer 1 mm, and per
+// - ODE QuickStep: 20 iterations, ERP 0.2, CFM 1e-10 (ODE's defaults, printed), surface layer 1 mm, and per
 //   contact dContactApprox1 (friction pyramid, two directions, bound mu times the normal force)
 //   with mu the pair's, plus dContactBounce with bounce = the pair's epsilon and bounce_vel =
 //   the restitution threshold 0.05 m/s when epsilon > 0.
