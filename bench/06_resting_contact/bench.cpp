@@ -6,6 +6,22 @@
 // 10 s), and what broke.
 // Then the iteration counts swept on the 210-cube pyramid (cost against drift), and Lab 5's box rain
 // with Lab 5's impulses, with the resting solver and in Bullet (see rainRuns()).
+// Last, the contact suite (contact_suite.hpp): every textbook scene in Lab 5's World
+// (World(scene, Settings{}): sequential impulses), Lab 6's World (restingWorldSettings() and
+// LcpContactSolver(RestingSettings{}): the cone PGS at the velocity level), Bullet and ODE's
+// QuickStep, each engine's states turned into BodyState (x, q, P = m v, L = R I_body R^T omega) and
+// fed to the scene after every step of 1/60 s; the same in quick mode (the suite is cheap). Each
+// peer gets our pair rules (restitution the smaller, friction the geometric mean) and:
+// - Bullet: Lab 5's Settings where Bullet has the knob (50 iterations, restitution threshold
+//   0.05 m/s, gravity); Bullet's defaults where our model has none: ERP 0.2 (its position
+//   correction: Baumgarte on the velocities up to 4 cm of overlap, split impulse beyond), no
+//   slop, warm starting 0.85, collision margin 0.04 m (boxes keep their
+//   outer size; the margin is clipped to a tenth of the smallest half extent), contact
+//   breaking threshold 0.02 m.
+// - ODE QuickStep: 20 iterations, ERP 0.2, CFM 1e-10 (ODE's defaults, printed), surface layer 1 mm, and per
+//   contact dContactApprox1 (friction pyramid, two directions, bound mu times the normal force)
+//   with mu the pair's, plus dContactBounce with bounce = the pair's epsilon and bounce_vel =
+//   the restitution threshold 0.05 m/s when epsilon > 0.
 //
 // What each engine does per step, on the same bodies (boxes, masses, inertias, initial poses, no
 // initial velocity, gravity 9.81 m/s^2, restitution 0, pair friction mu = 0.5, the geometric mean
@@ -49,7 +65,8 @@
 // from its start than toppling could carry it (the pyramid's width plus its height), "no
 // verdict yet" when a budget stopped the run first with no cube beyond 5 cm. Each engine's
 // windows run back to back (not interleaved with the other engines': ours may take one window).
-// Writes <out>/lab06_bench.md and the chart <out>/lab06_bench.
+// Writes <out>/lab06_bench.md and the chart <out>/lab06_bench; the suite <out>/lab06_bench_suite.md
+// and the chart <out>/lab06_bench_suite.
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
@@ -62,6 +79,7 @@
 #include <variant>
 #include <vector>
 
+#include "physlab/contact_suite.hpp"
 #include "physlab/demo.hpp"
 #include "physlab/error.hpp"
 #include "physlab/plot.hpp"
@@ -85,12 +103,14 @@ constexpr int kIterations = 20;     // PGS sweeps (ours, ODE QuickStep) and Bull
 constexpr int kMaxContactsPerPair = 4;
 constexpr std::size_t kDense = 2;   // the engines' index of our dense PGS
 
-// One engine stepping one scene; position(i) of body i of the scene (fixed bodies included).
+// One engine stepping one scene; position(i) and states() of the scene's bodies (fixed bodies
+// included), states() as our BodyState (x, q, P = m v, L = world inertia times omega).
 class Simulation {
  public:
   virtual ~Simulation() = default;
   virtual void step(double h) = 0;
   virtual Vec3 position(int i) const = 0;
+  virtual std::vector<BodyState> states() const = 0;
   virtual int size() const = 0;
   // Contacts of the last step (points), for the table.
   virtual int contacts() const = 0;
@@ -114,8 +134,10 @@ class OurSimulation : public Simulation {
  public:
   explicit OurSimulation(const Scene& scene, const RestingSettings& settings)
       : world_(scene, restingWorldSettings(), std::make_shared<LcpContactSolver>(settings)) {}
+  explicit OurSimulation(World world) : world_(std::move(world)) {}
   void step(double h) override { world_.step(h); }
   Vec3 position(int i) const override { return world_.states()[static_cast<std::size_t>(i)].x; }
+  std::vector<BodyState> states() const override { return world_.states(); }
   int size() const override { return static_cast<int>(world_.states().size()); }
   int contacts() const override { return world_.diagnostics().contacts; }
   const World& world() const { return world_; }
@@ -140,6 +162,11 @@ class BulletSimulation : public Simulation {
   explicit BulletSimulation(const Scene& scene, int iterations = kIterations) : world_(scene, bulletSettings(iterations)) {}
   void step(double h) override { world_.step(h); }
   Vec3 position(int i) const override { return world_.position(i); }
+  std::vector<BodyState> states() const override {
+    std::vector<BodyState> all;
+    for (int i = 0; i < world_.size(); ++i) all.push_back(world_.state(i));
+    return all;
+  }
   int size() const override { return world_.size(); }
   int contacts() const override { return world_.contacts().second; }
   const bench::BulletWorld& world() const { return world_; }
@@ -201,6 +228,29 @@ class OdeSimulation : public Simulation {
     const dReal* x = dBodyGetPosition(body);
     return Vec3(x[0], x[1], x[2]);
   }
+  std::vector<BodyState> states() const override {
+    std::vector<BodyState> all(bodies_.size());  // the ground keeps BodyState{}
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      const dBodyID body = bodies_[i];
+      if (body == nullptr) continue;
+      BodyState& s = all[i];
+      s.x = position(static_cast<int>(i));
+      const dReal* q = dBodyGetQuaternion(body);
+      s.q = Quat(q[0], q[1], q[2], q[3]);
+      const dReal* v = dBodyGetLinearVel(body);
+      const dReal* w = dBodyGetAngularVel(body);
+      dMass mass;
+      dBodyGetMass(body, &mass);
+      const Mat3 R = s.q.toRotationMatrix();
+      Mat3 I;
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) I(r, c) = mass.I[4 * r + c];  // dMatrix3 rows are padded to 4
+      }
+      s.P = mass.mass * Vec3(v[0], v[1], v[2]);
+      s.L = R * I * R.transpose() * Vec3(w[0], w[1], w[2]);
+    }
+    return all;
+  }
   int size() const override { return static_cast<int>(bodies_.size()); }
   int contacts() const override { return contacts_; }
 
@@ -219,12 +269,15 @@ class OdeSimulation : public Simulation {
     if (const auto* box = std::get_if<Box>(&body.shape)) {
       const Vec3 size = 2.0 * box->half_extents;
       geom = dCreateBox(space_, size.x(), size.y(), size.z());
+    } else if (const auto* sphere = std::get_if<Sphere>(&body.shape)) {
+      geom = dCreateSphere(space_, sphere->radius);
     } else if (const auto* plane = std::get_if<Plane>(&body.shape)) {
       geom = dCreatePlane(space_, plane->normal.x(), plane->normal.y(), plane->normal.z(), plane->offset);
     } else {
-      throw InvalidInput(std::string("the ODE pyramid has no ") + shapeName(body.shape));
+      throw InvalidInput(std::string("the ODE scene has no ") + shapeName(body.shape));
     }
     mu_.push_back(body.mu);
+    epsilon_.push_back(body.epsilon);
     dGeomSetData(geom, reinterpret_cast<void*>(mu_.size() - 1));
     if (body.fixed) {
       bodies_.push_back(nullptr);
@@ -239,6 +292,10 @@ class OdeSimulation : public Simulation {
     dBodySetPosition(b, state.x.x(), state.x.y(), state.x.z());
     const dQuaternion q = {state.q.w(), state.q.x(), state.q.y(), state.q.z()};
     dBodySetQuaternion(b, q);
+    const Mat3 R = state.q.normalized().toRotationMatrix();
+    const Vec3 v = state.P / body.mass, w = R * I.inverse() * R.transpose() * state.L;
+    dBodySetLinearVel(b, v.x(), v.y(), v.z());
+    dBodySetAngularVel(b, w.x(), w.y(), w.z());
     bodies_.push_back(b);
   }
 
@@ -248,11 +305,20 @@ class OdeSimulation : public Simulation {
     if (b1 == nullptr && b2 == nullptr) return;
     dContact contact[kMaxContactsPerPair] = {};
     const int n = dCollide(o1, o2, kMaxContactsPerPair, &contact[0].geom, sizeof(dContact));
-    const double mu = std::sqrt(self->mu_[reinterpret_cast<std::size_t>(dGeomGetData(o1))] *
-                                self->mu_[reinterpret_cast<std::size_t>(dGeomGetData(o2))]);
+    const std::size_t g1 = reinterpret_cast<std::size_t>(dGeomGetData(o1));
+    const std::size_t g2 = reinterpret_cast<std::size_t>(dGeomGetData(o2));
+    // Our pair rules: friction the geometric mean, restitution the smaller
+    const double mu = std::sqrt(self->mu_[g1] * self->mu_[g2]);
+    const double epsilon = std::min(self->epsilon_[g1], self->epsilon_[g2]);
     for (int k = 0; k < n; ++k) {
       contact[k].surface.mode = dContactApprox1;
       contact[k].surface.mu = mu;
+      if (epsilon > 0.0) {
+        // ODE bounces when the approach is faster than bounce_vel: our restitution threshold
+        contact[k].surface.mode |= dContactBounce;
+        contact[k].surface.bounce = epsilon;
+        contact[k].surface.bounce_vel = restingWorldSettings().restitution_threshold;
+      }
       const dJointID joint = dJointCreateContact(self->world_, self->joints_, &contact[k]);
       dJointAttach(joint, b1, b2);
     }
@@ -264,7 +330,7 @@ class OdeSimulation : public Simulation {
   dSpaceID space_;
   dJointGroupID joints_;
   std::vector<dBodyID> bodies_;
-  std::vector<double> mu_;
+  std::vector<double> mu_, epsilon_;  // per geom (its data is the index)
   int contacts_ = 0;
 };
 #endif
@@ -520,6 +586,107 @@ std::vector<RainRun> rainRuns(int count, int steps, int windows) {
   return runs;
 }
 
+// ----- The contact suite ------------------------------------------------------------------------
+
+// One engine of the contact suite: the table's column, the chart's legend entry and point style.
+struct SuiteEngine {
+  std::string name, label, style;
+  std::function<std::unique_ptr<Simulation>(const Scene&)> make;
+};
+
+// Runs `scene` (fresh) in `sim` for scene.duration() at kSuiteStep, observing after each step;
+// an engine that throws leaves every measure not finite (failed), `note` says why.
+std::vector<Measure> runSuite(SuiteScene& scene, Simulation& sim, std::string& note) {
+  const int steps = static_cast<int>(std::lround(scene.duration() / kSuiteStep));
+  try {
+    scene.observe(0.0, sim.states());
+    for (int k = 1; k <= steps; ++k) {
+      sim.step(kSuiteStep);
+      scene.observe(k * kSuiteStep, sim.states());
+    }
+  } catch (const std::exception& e) {
+    note = scene.name() + ": " + e.what();
+    std::vector<Measure> failed = scene.measures();
+    for (Measure& m : failed) m.value = NAN;
+    return failed;
+  }
+  return scene.measures();
+}
+
+// The score drawn for a measure: |value - expected| / tolerance, inside the chart's log range
+// (an exact hit at the floor, a value that is not finite at the ceiling).
+constexpr double kScoreFloor = 1e-3, kScoreCeiling = 1e4;
+double drawnScore(const Measure& m) {
+  const double score = m.score();
+  return std::isfinite(score) ? std::clamp(score, kScoreFloor, kScoreCeiling) : kScoreCeiling;
+}
+
+// Every suite scene in every engine: the table (printed, and <out>/lab06_bench_suite.md) and the
+// chart of the scores (<out>/lab06_bench_suite). Returns the paths written.
+std::vector<std::string> contactSuiteBench(const std::vector<SuiteEngine>& engines, const std::string& out) {
+  const std::size_t scenes = contactSuite().size();
+  // results[e][s]: engine e's measures of scene s, each engine on a fresh suite
+  std::vector<std::vector<std::vector<Measure>>> results(engines.size());
+  std::vector<std::string> notes;
+  for (std::size_t e = 0; e < engines.size(); ++e) {
+    for (const std::unique_ptr<SuiteScene>& scene : contactSuite()) {
+      std::string note;
+      const auto sim = engines[e].make(scene->scene());
+      results[e].push_back(runSuite(*scene, *sim, note));
+      if (!note.empty()) notes.push_back(engines[e].name + ", " + note);
+    }
+  }
+  std::vector<std::string> header = {"scene", "measure", "expected", "tolerance"};
+  for (const SuiteEngine& engine : engines) header.push_back(engine.label);
+  Table table(header);
+  std::vector<int> passed(engines.size(), 0);
+  std::vector<Series> series;
+  for (std::size_t e = 0; e < engines.size(); ++e) series.push_back({engines[e].label, {}, {}, engines[e].style});
+  std::vector<std::pair<double, std::string>> tics;
+  const auto suite = contactSuite();
+  for (std::size_t s = 0; s < scenes; ++s) {
+    for (std::size_t k = 0; k < results[0][s].size(); ++k) {
+      const Measure& truth = results[0][s][k];
+      std::vector<std::string> row = {suite[s]->name(), truth.name, fmt(truth.expected, 4), fmt(truth.tolerance, 3)};
+      const double x = static_cast<double>(tics.size() + 1);
+      for (std::size_t e = 0; e < engines.size(); ++e) {
+        const Measure& m = results[e][s][k];
+        row.push_back(fmt(m.value, 4) + (m.pass() ? " pass" : " FAIL"));
+        passed[e] += m.pass() ? 1 : 0;
+        // Side by side within the measure's slot, in the engines' order
+        series[e].x.push_back(x + 0.15 * (static_cast<double>(e) - 0.5 * static_cast<double>(engines.size() - 1)));
+        series[e].y.push_back(drawnScore(m));
+      }
+      table.add(row);
+      tics.emplace_back(x, suite[s]->name() + ": " + truth.name);
+    }
+  }
+  std::vector<std::string> total = {"measures passed", "", "", ""};
+  for (const int p : passed) total.push_back(std::to_string(p) + " of " + std::to_string(tics.size()));
+  table.add(total);
+
+  std::cout << "\nLab 6 benchmark: the contact suite (textbook scenes against physical truth), h = 1/60 s\n";
+  for (const SuiteEngine& engine : engines) std::cout << "  " << engine.label << ": " << engine.name << "\n";
+  table.print(std::cout);
+  for (const std::string& note : notes) std::cout << "  failed: " << note << "\n";
+
+  Chart chart("Textbook contact scenes at h = 1/60 s: error over tolerance (below 1 passes)", "",
+              "|value - expected| / tolerance (10^{-3} and below drawn at 10^{-3})");
+  chart.logY().yRange(0.5 * kScoreFloor, 2.0 * kScoreCeiling).xTics(tics);
+  for (Series& engine : series) chart.add(std::move(engine));
+  chart.add({"passes below 1", {0.0, static_cast<double>(tics.size() + 1)}, {1.0, 1.0}, "lines dt 3 lc rgb '#000000'"});
+  std::vector<std::string> paths = {table.saveMarkdown(out + "/lab06_bench_suite.md")};
+  {
+    std::ofstream file(paths.front(), std::ios::app);
+    file << "\nEngines: ";
+    for (std::size_t e = 0; e < engines.size(); ++e) file << (e > 0 ? "; " : "") << engines[e].label << ": " << engines[e].name;
+    file << ".\n";
+    for (const std::string& note : notes) file << "\nFailed: " << note << "\n";
+  }
+  for (const std::string& p : chart.save(out + "/lab06_bench_suite")) paths.push_back(p);
+  return paths;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -754,12 +921,40 @@ int main(int argc, char** argv) {
       out << "\nThe box rain, " << rain_steps << " steps (fastest window).\n\n" << rain_file.rdbuf();
     }
     std::remove(rain_path.c_str());
+
+    // The contact suite: Lab 5's World, Lab 6's World and the peers on the textbook scenes
+    std::vector<SuiteEngine> suite_engines = {
+        {"World(scene, Settings{}): " + Settings{}.toString(), "PhysLab sequential (Lab 5)", "points pt 7 ps 1.3",
+         [](const Scene& sc) { return std::make_unique<OurSimulation>(World(sc, Settings{})); }},
+        {"World(scene, restingWorldSettings(), LcpContactSolver(RestingSettings{})): " + RestingSettings{}.toString(),
+         "PhysLab PGS (Lab 6)", "points pt 5 ps 1.3",
+         [](const Scene& sc) {
+           return std::make_unique<OurSimulation>(
+               World(sc, restingWorldSettings(), std::make_shared<LcpContactSolver>(RestingSettings{})));
+         }},
+    };
+#ifdef PHYSLAB_HAVE_BULLET
+    suite_engines.push_back(
+        {bench::bulletName() + ", sleeping off, " + std::to_string(Settings{}.iterations) +
+             " iterations and restitution threshold " + fmt(Settings{}.restitution_threshold) +
+             " m/s (Lab 5's Settings), Bullet's defaults otherwise",
+         "Bullet", "points pt 9 ps 1.3",
+         [](const Scene& sc) { return std::make_unique<BulletSimulation>(sc, Settings{}.iterations); }});
+#endif
+#ifdef PHYSLAB_HAVE_ODE
+    suite_engines.push_back({"dWorldQuickStep, " + std::to_string(kIterations) + " iterations, " +
+                                 OdeSimulation::describeWorld(),
+                             "ODE QuickStep", "points pt 11 ps 1.3",
+                             [](const Scene& sc) { return std::make_unique<OdeSimulation>(sc, true); }});
+#endif
+    const std::vector<std::string> suite_paths = contactSuiteBench(suite_engines, options.out);
 #ifdef PHYSLAB_HAVE_ODE
     dCloseODE();
 #endif
     std::cout << "wrote " << path << "\n";
     for (const std::string& p : chart_paths) std::cout << "wrote " << p << "\n";
     for (const std::string& p : wp_paths) std::cout << "wrote " << p << "\n";
+    for (const std::string& p : suite_paths) std::cout << "wrote " << p << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "bench_06_resting_contact: " << e.what() << "\n";

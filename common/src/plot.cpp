@@ -62,6 +62,11 @@ Chart& Chart::mark(Marker marker) {
   return *this;
 }
 
+Chart& Chart::xTics(std::vector<std::pair<double, std::string>> tics) {
+  x_tics_ = std::move(tics);
+  return *this;
+}
+
 std::string methodColour(const std::string& title) {
   // One entry per method or engine across the labs; never two methods of one chart alike
   static const std::pair<const char*, const char*> kColours[] = {
@@ -129,6 +134,13 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     if (log_x_) gp << "set logscale x\nset format x '10^{%L}'\n";
     if (log_y_) gp << "set logscale y\nset format y '10^{%L}'\n";
     if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
+    if (!x_tics_.empty()) {
+      gp << "set xtics rotate by -45 left font ',9' (";
+      for (std::size_t i = 0; i < x_tics_.size(); ++i) {
+        gp << (i > 0 ? ", " : "") << quoted(x_tics_[i].second) << " " << x_tics_[i].first;
+      }
+      gp << ")\nset xrange [" << x_tics_.front().first - 1.0 << ":" << x_tics_.back().first + 1.0 << "]\n";
+    }
     for (std::size_t i = 0; i < markers_.size(); ++i) {
       // Labels near the top, staggered downwards so that neighbouring markers do not overwrite
       // each other; a marker in the right part of the data is labelled to its left, so that the

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physlab/math.hpp"
@@ -47,6 +48,10 @@ class Chart {
   Chart& yRange(double lo, double hi);   ///< fixed y range
   Chart& add(Series series);             ///< adds a series; throws InvalidInput on x/y size mismatch
   Chart& mark(Marker marker);            ///< adds a vertical marker
+  /// Names the x axis's tics, given in increasing x: each label at its x, slanted, in place of the
+  /// numbers, and the x range is the tics' with 1 to spare on each side (a category chart: one
+  /// tic per category at 1, 2, ...).
+  Chart& xTics(std::vector<std::pair<double, std::string>> tics);
   /// Writes `stem`.png and `stem`.svg (creating the folder) and returns both paths. Points that
   /// a log axis cannot show (non-positive, non-finite) are left out.
   std::vector<std::string> save(const std::string& stem) const;
@@ -58,6 +63,7 @@ class Chart {
   double y_lo_ = 0.0, y_hi_ = 1.0;
   std::vector<Series> series_;
   std::vector<Marker> markers_;
+  std::vector<std::pair<double, std::string>> x_tics_;
 };
 
 /// One drawable set of points in an animation frame.
