@@ -48,20 +48,18 @@ TEST_CASE("textbook scenes, sequential impulses: a 100:1 heavy box stays on a li
   CHECK(checkScenes({"heavy on light", "overlap recovery", "dominoes"}) == 3);
 }
 
-TEST_CASE("textbook scenes, sequential impulses: a stack of 10 cubes stands", "[lab05][pts=1]") {
-  // Lab 5's bar is lower than the suite's (Lab 6 meets that): position correction leaves each of
-  // the 10 contacts up to its 1 mm slop deep, and 50 sweeps leave the top swaying by centimetres.
-  // A stack that topples moves its top by more than a metre.
+TEST_CASE("textbook scenes, sequential impulses: a stack of 10 cubes stands, sunk by its 10 slops", "[lab05][pts=1]") {
+  // Lab 5's sink bar is the slop's, not the suite's (Lab 6 meets that): position correction
+  // leaves each of the 10 contacts up to its 1 mm slop deep.
   for (const auto& scene : contactSuite()) {
     if (scene->name().rfind("stack", 0) != 0) continue;
     World world(scene->scene(), Settings{});
     const std::vector<Measure> measures = runSuiteScene(*scene, world);
     REQUIRE(measures.size() == 2);
     CAPTURE(measures[0].value, measures[1].value);
-    // Sunk: 10 contacts at the slop, 10 mm, and a millimetre of round-off and sway.
-    CHECK(measures[0].value <= 0.011);
+    // Sunk: 10 contacts at the 1 mm slop, and a millimetre of round-off and sway.
+    CHECK(measures[0].value <= 10 * Settings{}.slop + 0.001);
     CHECK(measures[0].value >= 0.0);
-    // Sway: a quarter of a cube's edge at most.
-    CHECK(measures[1].value <= 0.05);
+    CHECK(measures[1].pass());
   }
 }

@@ -46,10 +46,24 @@ TEST_CASE("textbook scenes, resting contact: a 100:1 heavy box stays on a light 
   CHECK(checkScenes({"heavy on light", "overlap recovery", "dominoes"}) == 3);
 }
 
-TEST_CASE("textbook scenes, resting contact: a stack of 10 cubes settles under 5 mm and stands still with enough PGS sweeps", "[lab06][pts=2]") {
-  // The default 100 sweeps leave a 2 m stack swaying by about 2 cm (PGS has not converged on a
-  // chain of 10 bodies); 300 sweeps stand within the suite's 1 cm, as the exact solvers do.
+TEST_CASE("textbook scenes, resting contact: a stack of 10 cubes stands and settles under 5 mm", "[lab06][pts=2]") {
+  CHECK(checkScenes({"stack"}) == 1);
+}
+
+TEST_CASE("textbook scenes, resting contact: with converged PGS the stack of 10 stands still", "[lab06][pts=1]") {
+  // The suite's bar is 'stands'; 'still' needs PGS converged: 100 sweeps sway the top by about
+  // 3 cm, 300 by under 1 cm (the exact solvers hold it to 1e-8 m, but Lemke cannot take every
+  // scene of the suite: the dominoes' degenerate corners end it on a ray).
   RestingSettings converged;
   converged.lcp.max_iterations = 300;
-  CHECK(checkScenes({"stack"}, converged) == 1);
+  for (const auto& scene : contactSuite()) {
+    if (scene->name().rfind("stack", 0) != 0) continue;
+    World world(scene->scene(), restingWorldSettings(), std::make_shared<LcpContactSolver>(converged));
+    const std::vector<Measure> measures = runSuiteScene(*scene, world);
+    REQUIRE(measures.size() == 2);
+    CAPTURE(measures[0].value, measures[1].value);
+    // 1 cm: a twentieth of an edge, a tenth of a degree of lean over the stack's 2 m
+    CHECK(measures[1].value <= 0.01);
+    CHECK(measures[0].pass());
+  }
 }
