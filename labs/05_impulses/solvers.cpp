@@ -1,5 +1,5 @@
-// Lab 5, sections 5-6: many contact points, sequentially (collision propagation) and
-// simultaneously (Jacobi), with accumulated impulses, clamping and warm starting.
+// Lab 5, sections 5-6: many contact points, sequentially (Gauss-Seidel) and simultaneously
+// (Jacobi), with accumulated impulses, clamping and warm starting.
 #include <algorithm>
 #include <limits>
 
@@ -9,17 +9,20 @@
 namespace physlab {
 
 int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
-  // Give a point that approaches now its full impulse, with the v_rel it has now
-  // TODO(student): sweep the contacts in order; when v_rel = n . relativeVelocity < -settings.tolerance, apply
-  // TODO(student): j = impulseMagnitude(A, B, p, n, epsilon) along n and add it to c.j; the sweep changed something.
-  // Below the threshold a bounce would only be jitter: such points rest (epsilon = 0)
-  // TODO(student): epsilon = c.epsilon when v_rel < -settings.restitution_threshold, else 0.
-  // Stop the sliding, keeping the accumulated friction inside the cone |j_t| <= mu j
-  // TODO(student): when mu > 0 and c.j > 0: j_t = c.j_t + frictionImpulse(..., infinity), shortened to mu c.j; apply j_t - c.j_t.
-  // Friction turns the bodies and may make other points approach: sweep again unless
-  // the change of sliding speed it caused is within the tolerance
-  // TODO(student): a sweep changed something when it gave a normal impulse or a friction change with |dj_t| K > tolerance
-  // TODO(student): (K = inverseEffectiveMass along dj_t); repeat until a sweep changes nothing or settings.iterations; return the sweeps.
+  // Warm start: apply the impulses carried over from the last step
+  // TODO(student): applyImpulse(A, B, p, c.j n + c.j_t) for every contact before the first sweep (whatever settings.warm_start says).
+  // Aim at v_rel+ = -epsilon v_rel-, decided before the solve (resting points aim at 0), and
+  // clamp the accumulated total, not the correction: j >= 0, so a sweep may take some back
+  // TODO(student): sweep the contacts in order, with the velocities the sweep has left so far; target = -c.epsilon c.v_rel_minus
+  // TODO(student): when c.v_rel_minus < -settings.restitution_threshold, else 0 (never from the v_rel you see now).
+  // TODO(student): j = max(0, c.j + (target - v_rel) / K); apply (j - c.j) n; its velocity change is K |j - c.j|; store c.j = j.
+  // Stop the sliding, keeping the accumulated friction inside the cone |j_t| <= mu j of the
+  // normal impulse just found
+  // TODO(student): when mu > 0: j_t = c.j_t + frictionImpulse(..., infinity), shortened to mu c.j (the new c.j); apply j_t - c.j_t;
+  // TODO(student): its velocity change is |dj_t| times inverseEffectiveMass along dj_t / |dj_t|.
+  // Converged when no point's velocity changed by more than the tolerance in a whole sweep
+  // TODO(student): stop when the largest change of the sweep is <= settings.tolerance, or after settings.iterations sweeps;
+  // TODO(student): return the sweeps made, the quiet last one included (no contacts: 1).
   notImplemented("solveSequential", "Lab 5 handout, section 5", bodies, contacts, settings);
 }
 
