@@ -79,7 +79,7 @@
 #include <variant>
 #include <vector>
 
-#include "physlab/contact_suite.hpp"
+#include "physlab/suite_report.hpp"
 #include "physlab/demo.hpp"
 #include "physlab/error.hpp"
 #include "physlab/plot.hpp"
@@ -105,12 +105,9 @@ constexpr std::size_t kDense = 2;   // the engines' index of our dense PGS
 
 // One engine stepping one scene; position(i) and states() of the scene's bodies (fixed bodies
 // included), states() as our BodyState (x, q, P = m v, L = world inertia times omega).
-class Simulation {
+class Simulation : public SuiteEngine {
  public:
-  virtual ~Simulation() = default;
-  virtual void step(double h) = 0;
   virtual Vec3 position(int i) const = 0;
-  virtual std::vector<BodyState> states() const = 0;
   virtual int size() const = 0;
   // Contacts of the last step (points), for the table.
   virtual int contacts() const = 0;
@@ -586,107 +583,6 @@ std::vector<RainRun> rainRuns(int count, int steps, int windows) {
   return runs;
 }
 
-// ----- The contact suite ------------------------------------------------------------------------
-
-// One engine of the contact suite: the table's column, the chart's legend entry and point style.
-struct SuiteEngine {
-  std::string name, label, style;
-  std::function<std::unique_ptr<Simulation>(const Scene&)> make;
-};
-
-// Runs `scene` (fresh) in `sim` for scene.duration() at kSuiteStep, observing after each step;
-// an engine that throws leaves every measure not finite (failed), `note` says why.
-std::vector<Measure> runSuite(SuiteScene& scene, Simulation& sim, std::string& note) {
-  const int steps = static_cast<int>(std::lround(scene.duration() / kSuiteStep));
-  try {
-    scene.observe(0.0, sim.states());
-    for (int k = 1; k <= steps; ++k) {
-      sim.step(kSuiteStep);
-      scene.observe(k * kSuiteStep, sim.states());
-    }
-  } catch (const std::exception& e) {
-    note = scene.name() + ": " + e.what();
-    std::vector<Measure> failed = scene.measures();
-    for (Measure& m : failed) m.value = NAN;
-    return failed;
-  }
-  return scene.measures();
-}
-
-// The score drawn for a measure: |value - expected| / tolerance, inside the chart's log range
-// (an exact hit at the floor, a value that is not finite at the ceiling).
-constexpr double kScoreFloor = 1e-3, kScoreCeiling = 1e4;
-double drawnScore(const Measure& m) {
-  const double score = m.score();
-  return std::isfinite(score) ? std::clamp(score, kScoreFloor, kScoreCeiling) : kScoreCeiling;
-}
-
-// Every suite scene in every engine: the table (printed, and <out>/lab06_bench_suite.md) and the
-// chart of the scores (<out>/lab06_bench_suite). Returns the paths written.
-std::vector<std::string> contactSuiteBench(const std::vector<SuiteEngine>& engines, const std::string& out) {
-  const std::size_t scenes = contactSuite().size();
-  // results[e][s]: engine e's measures of scene s, each engine on a fresh suite
-  std::vector<std::vector<std::vector<Measure>>> results(engines.size());
-  std::vector<std::string> notes;
-  for (std::size_t e = 0; e < engines.size(); ++e) {
-    for (const std::unique_ptr<SuiteScene>& scene : contactSuite()) {
-      std::string note;
-      const auto sim = engines[e].make(scene->scene());
-      results[e].push_back(runSuite(*scene, *sim, note));
-      if (!note.empty()) notes.push_back(engines[e].name + ", " + note);
-    }
-  }
-  std::vector<std::string> header = {"scene", "measure", "expected", "tolerance"};
-  for (const SuiteEngine& engine : engines) header.push_back(engine.label);
-  Table table(header);
-  std::vector<int> passed(engines.size(), 0);
-  std::vector<Series> series;
-  for (std::size_t e = 0; e < engines.size(); ++e) series.push_back({engines[e].label, {}, {}, engines[e].style});
-  std::vector<std::pair<double, std::string>> tics;
-  const auto suite = contactSuite();
-  for (std::size_t s = 0; s < scenes; ++s) {
-    for (std::size_t k = 0; k < results[0][s].size(); ++k) {
-      const Measure& truth = results[0][s][k];
-      std::vector<std::string> row = {suite[s]->name(), truth.name, fmt(truth.expected, 4), fmt(truth.tolerance, 3)};
-      const double x = static_cast<double>(tics.size() + 1);
-      for (std::size_t e = 0; e < engines.size(); ++e) {
-        const Measure& m = results[e][s][k];
-        row.push_back(fmt(m.value, 4) + (m.pass() ? " pass" : " FAIL"));
-        passed[e] += m.pass() ? 1 : 0;
-        // Side by side within the measure's slot, in the engines' order
-        series[e].x.push_back(x + 0.15 * (static_cast<double>(e) - 0.5 * static_cast<double>(engines.size() - 1)));
-        series[e].y.push_back(drawnScore(m));
-      }
-      table.add(row);
-      tics.emplace_back(x, suite[s]->name() + ": " + truth.name);
-    }
-  }
-  std::vector<std::string> total = {"measures passed", "", "", ""};
-  for (const int p : passed) total.push_back(std::to_string(p) + " of " + std::to_string(tics.size()));
-  table.add(total);
-
-  std::cout << "\nLab 6 benchmark: the contact suite (textbook scenes against physical truth), h = 1/60 s\n";
-  for (const SuiteEngine& engine : engines) std::cout << "  " << engine.label << ": " << engine.name << "\n";
-  table.print(std::cout);
-  for (const std::string& note : notes) std::cout << "  failed: " << note << "\n";
-
-  Chart chart("Textbook contact scenes at h = 1/60 s: error over tolerance (below 1 passes)", "",
-              "|value - expected| / tolerance (10^{-3} and below drawn at 10^{-3})");
-  chart.logY().yRange(0.5 * kScoreFloor, 2.0 * kScoreCeiling).xTics(tics);
-  for (Series& engine : series) chart.add(std::move(engine));
-  chart.add({"passes below 1", {0.0, static_cast<double>(tics.size() + 1)}, {1.0, 1.0}, "lines dt 3 lc rgb '#000000'"});
-  std::vector<std::string> paths = {table.saveMarkdown(out + "/lab06_bench_suite.md")};
-  {
-    std::ofstream file(paths.front(), std::ios::app);
-    file << "\nEngines: ";
-    for (std::size_t e = 0; e < engines.size(); ++e) file << (e > 0 ? "; " : "") << engines[e].label << ": " << engines[e].name;
-    file << ".\n";
-    for (const std::string& note : notes) file << "\nFailed: " << note << "\n";
-  }
-  for (const std::string& p : chart.save(out + "/lab06_bench_suite")) paths.push_back(p);
-  return paths;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -923,7 +819,7 @@ int main(int argc, char** argv) {
     std::remove(rain_path.c_str());
 
     // The contact suite: Lab 5's World, Lab 6's World and the peers on the textbook scenes
-    std::vector<SuiteEngine> suite_engines = {
+    std::vector<SuiteColumn> suite_engines = {
         {"World(scene, Settings{}): " + Settings{}.toString(), "PhysLab sequential (Lab 5)", "points pt 7 ps 1.3",
          [](const Scene& sc) { return std::make_unique<OurSimulation>(World(sc, Settings{})); }},
         {"World(scene, restingWorldSettings(), LcpContactSolver(RestingSettings{})): " + RestingSettings{}.toString(),
@@ -947,7 +843,9 @@ int main(int argc, char** argv) {
                              "ODE QuickStep", "points pt 11 ps 1.3",
                              [](const Scene& sc) { return std::make_unique<OdeSimulation>(sc, true); }});
 #endif
-    const std::vector<std::string> suite_paths = contactSuiteBench(suite_engines, options.out);
+    const std::vector<std::string> suite_paths = contactSuiteReport(
+        suite_engines, "Lab 6 benchmark: the contact suite (textbook scenes against physical truth), h = 1/60 s",
+        options.out + "/lab06_bench_suite", std::cout).paths;
 #ifdef PHYSLAB_HAVE_ODE
     dCloseODE();
 #endif

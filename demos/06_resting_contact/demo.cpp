@@ -1,8 +1,8 @@
 // Lab 6 demo: resting contact as an LCP. PGS's convergence against the mass ratio, the cost of
 // each solver against how well a stack stands, a pyramid over time at the acceleration and the
 // velocity level, the largest pyramid the matrix-free PGS keeps standing against its sweeps,
-// blocks on a friction ramp against g (sin - mu cos) t, and animations (pyramids that stand and
-// fall, a stack that falls).
+// blocks on a friction ramp against g (sin - mu cos) t, the textbook contact scenes of the suite
+// in Labs 5 and 6, and animations (pyramids that stand and fall, a stack that falls).
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -13,6 +13,7 @@
 #include "physlab/error.hpp"
 #include "physlab/plot.hpp"
 #include "physlab/resting.hpp"
+#include "physlab/suite_report.hpp"
 #include "physlab/world.hpp"
 
 using namespace physlab;
@@ -491,6 +492,27 @@ void collapseAnimation(const DemoOptions& options, std::vector<std::string>& wri
   });
 }
 
+// The contact suite in Lab 5's World and in Lab 6's, each measure's error over its tolerance
+// (the benchmark adds Bullet and ODE).
+void suiteChart(const DemoOptions& options, std::vector<std::string>& written, Table& table) {
+  const std::vector<SuiteColumn> columns = {
+      {"World(scene, Settings{}): " + Settings{}.toString(), "PhysLab sequential (Lab 5)", "points pt 7 ps 1.3",
+       [](const Scene& scene) { return std::make_unique<WorldEngine>(World(scene, Settings{})); }},
+      {"World(scene, restingWorldSettings(), LcpContactSolver(RestingSettings{})): " + RestingSettings{}.toString(),
+       "PhysLab PGS (Lab 6)", "points pt 5 ps 1.3",
+       [](const Scene& scene) {
+         return std::make_unique<WorldEngine>(
+             World(scene, restingWorldSettings(), std::make_shared<LcpContactSolver>(RestingSettings{})));
+       }}};
+  const SuiteReport report = contactSuiteReport(
+      columns, "Lab 6 demo: the contact suite (textbook scenes against physical truth), h = 1/60 s",
+      options.out + "/lab06_suite", std::cout);
+  written.insert(written.end(), report.paths.begin(), report.paths.end());
+  table.add({"contact suite: measures passed, Lab 5 / Lab 6",
+             std::to_string(report.passed[0]) + " / " + std::to_string(report.passed[1]),
+             "of " + std::to_string(report.measures)});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -498,8 +520,8 @@ int main(int argc, char** argv) {
     const DemoOptions options = parseDemoOptions(
         argc, argv,
         "Lab 6 demo: PGS convergence against the mass ratio, solver cost against stack drift, a pyramid at "
-        "both levels, the largest pyramid PGS keeps standing, a friction ramp, standing and falling pyramids and a "
-        "collapsing stack.");
+        "both levels, the largest pyramid PGS keeps standing, a friction ramp, the textbook contact scenes, standing "
+        "and falling pyramids and a collapsing stack.");
     std::vector<std::string> written;
     Table table({"quantity", "measured", "expected"});
     // A pyramid's LCP is dense and the exact solvers' cost grows fast with its size: with 4 rows
@@ -510,6 +532,7 @@ int main(int argc, char** argv) {
     pyramidChart(options, rows, written, table);
     largestPyramidChart(options, written, table);
     frictionRampChart(options, written, table);
+    suiteChart(options, written, table);
     pyramidAnimation(options, rows, written);
     collapseAnimation(options, written);
     largePyramidAnimations(options, written);

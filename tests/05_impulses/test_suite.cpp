@@ -20,7 +20,7 @@ int checkScenes(std::initializer_list<const char*> names) {
     for (const char* prefix : names) wanted = wanted || name.rfind(prefix, 0) == 0;
     if (!wanted) continue;
     ++ran;
-    World world(scene->scene(), Settings{});
+    WorldEngine world(World(scene->scene(), Settings{}));
     for (const Measure& m : runSuiteScene(*scene, world)) {
       CAPTURE(name, m.name, m.value, m.expected, m.tolerance, m.why);
       CHECK(m.pass());
@@ -53,7 +53,7 @@ TEST_CASE("textbook scenes, sequential impulses: a stack of 10 cubes stands, sun
   // leaves each of the 10 contacts up to its 1 mm slop deep.
   for (const auto& scene : contactSuite()) {
     if (scene->name().rfind("stack", 0) != 0) continue;
-    World world(scene->scene(), Settings{});
+    WorldEngine world(World(scene->scene(), Settings{}));
     const std::vector<Measure> measures = runSuiteScene(*scene, world);
     REQUIRE(measures.size() == 2);
     CAPTURE(measures[0].value, measures[1].value);

@@ -22,9 +22,9 @@ int checkScenes(std::initializer_list<const char*> names, const RestingSettings&
     for (const char* prefix : names) wanted = wanted || name.rfind(prefix, 0) == 0;
     if (!wanted) continue;
     ++ran;
-    World world(scene->scene(), restingWorldSettings(), std::make_shared<LcpContactSolver>(resting));
+    WorldEngine world(World(scene->scene(), restingWorldSettings(), std::make_shared<LcpContactSolver>(resting)));
     for (const Measure& m : runSuiteScene(*scene, world)) {
-      CAPTURE(name, m.name, m.value, m.expected, m.tolerance, m.why, world.describe());
+      CAPTURE(name, m.name, m.value, m.expected, m.tolerance, m.why, world.world().describe());
       CHECK(m.pass());
     }
   }
@@ -58,7 +58,7 @@ TEST_CASE("textbook scenes, resting contact: with converged PGS the stack of 10 
   converged.lcp.max_iterations = 300;
   for (const auto& scene : contactSuite()) {
     if (scene->name().rfind("stack", 0) != 0) continue;
-    World world(scene->scene(), restingWorldSettings(), std::make_shared<LcpContactSolver>(converged));
+    WorldEngine world(World(scene->scene(), restingWorldSettings(), std::make_shared<LcpContactSolver>(converged)));
     const std::vector<Measure> measures = runSuiteScene(*scene, world);
     REQUIRE(measures.size() == 2);
     CAPTURE(measures[0].value, measures[1].value);

@@ -16,6 +16,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physlab/world.hpp"
@@ -55,12 +56,35 @@ class SuiteScene {
   virtual std::vector<Measure> measures() const = 0;
 };
 
+/// An engine the suite runs in: steps its copy of a Scene and reports every body's state (fixed
+/// bodies included, in the Scene's order) as a BodyState. World is one; the benchmark wraps Bullet
+/// and ODE.
+class SuiteEngine {
+ public:
+  virtual ~SuiteEngine() = default;
+  /// One step of h [s].
+  virtual void step(double h) = 0;
+  /// Every body's state now.
+  virtual std::vector<BodyState> states() const = 0;
+};
+
 /// The whole suite, fresh (no observations yet), in a fixed order.
 std::vector<std::unique_ptr<SuiteScene>> contactSuite();
 
-/// Runs `scene` in `world` (made from scene.scene()) for scene.duration() at kSuiteStep and
+/// Runs `scene` in `engine` (made from scene.scene()) for scene.duration() at kSuiteStep and
 /// returns its measures. States that stop being finite fail the measures that read them (a value
 /// that is not finite never passes).
-std::vector<Measure> runSuiteScene(SuiteScene& scene, World& world);
+std::vector<Measure> runSuiteScene(SuiteScene& scene, SuiteEngine& engine);
+/// A World as a SuiteEngine.
+class WorldEngine : public SuiteEngine {
+ public:
+  explicit WorldEngine(World world) : world_(std::move(world)) {}
+  void step(double h) override { world_.step(h); }
+  std::vector<BodyState> states() const override { return world_.states(); }
+  const World& world() const { return world_; }  ///< the World, e.g. for World::describe()
+
+ private:
+  World world_;
+};
 
 }  // namespace physlab

@@ -383,12 +383,12 @@ std::vector<std::unique_ptr<SuiteScene>> contactSuite() {
   return suite;
 }
 
-std::vector<Measure> runSuiteScene(SuiteScene& scene, World& world) {
+std::vector<Measure> runSuiteScene(SuiteScene& scene, SuiteEngine& engine) {
   const int steps = static_cast<int>(std::lround(scene.duration() / kSuiteStep));
-  scene.observe(0.0, world.states());
+  scene.observe(0.0, engine.states());
   for (int k = 1; k <= steps; ++k) {
-    world.step(kSuiteStep);
-    scene.observe(k * kSuiteStep, world.states());
+    engine.step(kSuiteStep);
+    scene.observe(k * kSuiteStep, engine.states());
   }
   return scene.measures();
 }

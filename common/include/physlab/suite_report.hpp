@@ -1,0 +1,37 @@
+/// \file suite_report.hpp
+/// \brief The contact suite's report: every textbook scene in several engines side by side, as a
+/// table and a chart of each measure's error over its tolerance (the Lab 6 demo and benchmark).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "physlab/contact_suite.hpp"
+
+namespace physlab {
+
+/// One engine of the report: a column of the table and a series of the chart.
+struct SuiteColumn {
+  std::string name;   ///< what the engine is and its settings, one line (printed under the table)
+  std::string label;  ///< the column's heading and the chart's legend entry (an engine's name gives its colour)
+  std::string style;  ///< gnuplot point style of its series
+  std::function<std::unique_ptr<SuiteEngine>(const Scene&)> make;  ///< a fresh engine holding a scene
+};
+
+/// What contactSuiteReport() wrote and counted.
+struct SuiteReport {
+  std::vector<std::string> paths;  ///< the table (.md) and the chart (.png, .svg)
+  std::vector<int> passed;         ///< measures passed, per column
+  int measures = 0;                ///< measures in the suite
+};
+
+/// Runs every scene of contactSuite() in every column's engine (an engine that throws fails that
+/// scene's measures and the reason is printed), prints the table to `out` under `heading`, and
+/// writes `stem`.md (the table) and the chart `stem`.png and `stem`.svg.
+SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const std::string& heading,
+                               const std::string& stem, std::ostream& out);
+
+}  // namespace physlab

@@ -1,0 +1,104 @@
+// The contact suite's report: the table and the chart of scores of suite_report.hpp.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "physlab/demo.hpp"
+#include "physlab/plot.hpp"
+#include "physlab/suite_report.hpp"
+
+namespace physlab {
+
+namespace {
+
+// Runs `scene` in a fresh engine of `column`; an engine that throws leaves every measure not
+// finite (failed), and `note` says why.
+std::vector<Measure> runColumn(SuiteScene& scene, const SuiteColumn& column, std::string& note) {
+  try {
+    const std::unique_ptr<SuiteEngine> engine = column.make(scene.scene());
+    return runSuiteScene(scene, *engine);
+  } catch (const std::exception& e) {
+    note = column.label + ", " + scene.name() + ": " + e.what();
+    std::vector<Measure> failed = scene.measures();
+    for (Measure& m : failed) m.value = std::numeric_limits<double>::quiet_NaN();
+    return failed;
+  }
+}
+
+// The score drawn for a measure: |value - expected| / tolerance, inside the chart's log range
+// (an exact hit at the floor, a value that is not finite at the ceiling).
+constexpr double kScoreFloor = 1e-3, kScoreCeiling = 1e4;
+double drawnScore(const Measure& m) {
+  const double score = m.score();
+  return std::isfinite(score) ? std::clamp(score, kScoreFloor, kScoreCeiling) : kScoreCeiling;
+}
+
+}  // namespace
+
+SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const std::string& heading,
+                               const std::string& stem, std::ostream& out) {
+  // results[c][s]: column c's measures of scene s, each column on a fresh suite
+  std::vector<std::vector<std::vector<Measure>>> results(columns.size());
+  std::vector<std::string> notes;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    for (const std::unique_ptr<SuiteScene>& scene : contactSuite()) {
+      std::string note;
+      results[c].push_back(runColumn(*scene, columns[c], note));
+      if (!note.empty()) notes.push_back(note);
+    }
+  }
+  std::vector<std::string> header = {"scene", "measure", "expected", "tolerance"};
+  for (const SuiteColumn& column : columns) header.push_back(column.label);
+  Table table(header);
+  SuiteReport report;
+  report.passed.assign(columns.size(), 0);
+  std::vector<Series> series;
+  for (const SuiteColumn& column : columns) series.push_back({column.label, {}, {}, column.style});
+  std::vector<std::pair<double, std::string>> tics;
+  const auto suite = contactSuite();
+  for (std::size_t s = 0; s < suite.size(); ++s) {
+    for (std::size_t k = 0; k < results[0][s].size(); ++k) {
+      const Measure& truth = results[0][s][k];
+      std::vector<std::string> row = {suite[s]->name(), truth.name, fmt(truth.expected, 4), fmt(truth.tolerance, 3)};
+      const double x = static_cast<double>(tics.size() + 1);
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        const Measure& m = results[c][s][k];
+        row.push_back(fmt(m.value, 4) + (m.pass() ? " pass" : " FAIL"));
+        report.passed[c] += m.pass() ? 1 : 0;
+        // Side by side within the measure's slot, in the columns' order
+        series[c].x.push_back(x + 0.15 * (static_cast<double>(c) - 0.5 * static_cast<double>(columns.size() - 1)));
+        series[c].y.push_back(drawnScore(m));
+      }
+      table.add(row);
+      tics.emplace_back(x, suite[s]->name() + ": " + truth.name);
+    }
+  }
+  std::vector<std::string> total = {"measures passed", "", "", ""};
+  report.measures = static_cast<int>(tics.size());
+  for (const int p : report.passed) total.push_back(std::to_string(p) + " of " + std::to_string(report.measures));
+  table.add(total);
+
+  out << "\n" << heading << "\n";
+  for (const SuiteColumn& column : columns) out << "  " << column.label << ": " << column.name << "\n";
+  table.print(out);
+  for (const std::string& note : notes) out << "  failed: " << note << "\n";
+
+  Chart chart("Textbook contact scenes, h = 1/60 s: below the dotted line passes (exact hits at 10^{-3}, failures to run at 10^4)",
+              "", "|value - expected| / tolerance");
+  chart.logY().yRange(0.5 * kScoreFloor, 2.0 * kScoreCeiling).xTics(tics);
+  for (Series& column : series) chart.add(std::move(column));
+  chart.add({"passes below 1", {0.0, static_cast<double>(tics.size() + 1)}, {1.0, 1.0}, "lines dt 3 lc rgb '#000000'"});
+  report.paths = {table.saveMarkdown(stem + ".md")};
+  {
+    std::ofstream file(report.paths.front(), std::ios::app);
+    file << "\nEngines: ";
+    for (std::size_t c = 0; c < columns.size(); ++c) file << (c > 0 ? "; " : "") << columns[c].label << ": " << columns[c].name;
+    file << ".\n";
+    for (const std::string& note : notes) file << "\nFailed: " << note << "\n";
+  }
+  for (const std::string& p : chart.save(stem)) report.paths.push_back(p);
+  return report;
+}
+
+}  // namespace physlab
