@@ -135,7 +135,8 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     if (log_y_) gp << "set logscale y\nset format y '10^{%L}'\n";
     if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
     if (!x_tics_.empty()) {
-      gp << "set xtics rotate by -45 left font ',9' (";
+      // Slanted names need room below the axis: a fixed bottom margin, in character heights
+      gp << "set bmargin 16\nset xtics rotate by -45 left font ',9' (";
       for (std::size_t i = 0; i < x_tics_.size(); ++i) {
         gp << (i > 0 ? ", " : "") << quoted(x_tics_[i].second) << " " << x_tics_[i].first;
       }

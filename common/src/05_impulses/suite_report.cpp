@@ -84,8 +84,8 @@ SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const st
   table.print(out);
   for (const std::string& note : notes) out << "  failed: " << note << "\n";
 
-  Chart chart("Textbook contact scenes, h = 1/60 s: below the dotted line passes (exact hits at 10^{-3}, failures to run at 10^4)",
-              "", "|value - expected| / tolerance");
+  Chart chart("Textbook contact scenes, h = 1/60 s: below the dotted line passes",
+              "", "|value - expected| / tolerance (exact: 10^{-3})");
   chart.logY().yRange(0.5 * kScoreFloor, 2.0 * kScoreCeiling).xTics(tics);
   for (Series& column : series) chart.add(std::move(column));
   chart.add({"passes below 1", {0.0, static_cast<double>(tics.size() + 1)}, {1.0, 1.0}, "lines dt 3 lc rgb '#000000'"});
