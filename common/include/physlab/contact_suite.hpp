@@ -78,9 +78,9 @@ std::vector<Measure> runSuiteScene(SuiteScene& scene, SuiteEngine& engine);
 /// A World as a SuiteEngine.
 class WorldEngine : public SuiteEngine {
  public:
-  explicit WorldEngine(World world) : world_(std::move(world)) {}
-  void step(double h) override { world_.step(h); }
-  std::vector<BodyState> states() const override { return world_.states(); }
+  explicit WorldEngine(World world) : world_(std::move(world)) {}  ///< takes the World over
+  void step(double h) override { world_.step(h); }                   ///< World::step()
+  std::vector<BodyState> states() const override { return world_.states(); }  ///< World::states()
   const World& world() const { return world_; }  ///< the World, e.g. for World::describe()
 
  private:
