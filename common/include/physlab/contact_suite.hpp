@@ -14,6 +14,7 @@
 /// \f$(0, 0, -9.81)\f$ m/s\f$^2\f$.
 #pragma once
 
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <utility>
@@ -70,6 +71,8 @@ class SuiteEngine {
 
 /// The whole suite, fresh (no observations yet), in a fixed order.
 std::vector<std::unique_ptr<SuiteScene>> contactSuite();
+/// The scenes of contactSuite() whose names start with one of `prefixes`, in the suite's order.
+std::vector<std::unique_ptr<SuiteScene>> contactSuite(std::initializer_list<const char*> prefixes);
 
 /// Runs `scene` in `engine` (made from scene.scene()) for scene.duration() at kSuiteStep and
 /// returns its measures. States that stop being finite fail the measures that read them (a value

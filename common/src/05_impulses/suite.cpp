@@ -383,6 +383,17 @@ std::vector<std::unique_ptr<SuiteScene>> contactSuite() {
   return suite;
 }
 
+std::vector<std::unique_ptr<SuiteScene>> contactSuite(std::initializer_list<const char*> prefixes) {
+  std::vector<std::unique_ptr<SuiteScene>> picked;
+  for (std::unique_ptr<SuiteScene>& scene : contactSuite()) {
+    const std::string name = scene->name();
+    const bool wanted = std::any_of(prefixes.begin(), prefixes.end(),
+                                    [&](const char* prefix) { return name.rfind(prefix, 0) == 0; });
+    if (wanted) picked.push_back(std::move(scene));
+  }
+  return picked;
+}
+
 std::vector<Measure> runSuiteScene(SuiteScene& scene, SuiteEngine& engine) {
   const int steps = static_cast<int>(std::lround(scene.duration() / kSuiteStep));
   scene.observe(0.0, engine.states());
