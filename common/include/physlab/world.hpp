@@ -157,7 +157,7 @@ struct Contact {
   std::uint32_t id = 0;           ///< feature id (Lab 4), for warm starting
   double epsilon = 0.0;           ///< restitution of the pair, min of the two (solvers use 0 below the threshold)
   double mu = 0.0;                ///< friction of the pair, \f$\sqrt{\mu_A \mu_B}\f$
-  double v_rel_minus = 0.0;       ///< \f$v_{rel}^-\f$ when classified (before the response) [m/s]
+  double v_rel_minus = 0.0;       ///< \f$v_{rel}^-\f$ when classified: with the velocities before this step's gravity [m/s]
   ContactKind kind = ContactKind::Separating;  ///< what classify found
   double j = 0.0;                 ///< accumulated normal impulse, >= 0 [N s]
   Vec3 j_t = Vec3::Zero();        ///< accumulated friction impulse, tangent plane, \f$|j_t| \le \mu j\f$ [N s]
