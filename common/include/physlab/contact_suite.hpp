@@ -78,6 +78,7 @@ std::vector<Measure> runSuiteScene(SuiteScene& scene, SuiteEngine& engine);
 /// A World as a SuiteEngine.
 class WorldEngine : public SuiteEngine {
  public:
+  /// Steps `world`, a World built from a SuiteScene's scene().
   explicit WorldEngine(World world) : world_(std::move(world)) {}
   void step(double h) override { world_.step(h); }
   std::vector<BodyState> states() const override { return world_.states(); }
