@@ -19,6 +19,16 @@ if(EXISTS "${PHYSLAB_ROOT}/solutions")
 endif()
 set_property(GLOBAL PROPERTY PHYSLAB_STAGES "")
 option(PHYSLAB_PREBUILT "Link later labs against prebuilt/ reference libraries when present (student copies)" ON)
+# prebuilt/ is compiled by g++ with libstdc++ for Linux on x86-64 (./physlab publish): it links
+# nowhere else (macOS, arm64, libc++). There the student's own earlier labs are linked instead.
+if(PHYSLAB_PREBUILT AND EXISTS "${PHYSLAB_ROOT}/prebuilt" AND NOT PHYSLAB_HAVE_SOLUTIONS)
+  if(NOT CMAKE_SYSTEM_NAME STREQUAL "Linux" OR NOT CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$"
+     OR CMAKE_CXX_FLAGS MATCHES "-stdlib=libc\\+\\+")
+    message(STATUS "prebuilt/ is for Linux x86-64 with libstdc++, not this build (${CMAKE_SYSTEM_NAME} "
+                   "${CMAKE_SYSTEM_PROCESSOR} ${CMAKE_CXX_FLAGS}): later labs link your own earlier labs")
+    set(PHYSLAB_PREBUILT OFF)
+  endif()
+endif()
 
 option(PHYSLAB_PORTABLE_RUNNER "Test runner without the grader's notary (automatic where executables are not ELF: macOS, Windows)" OFF)
 
