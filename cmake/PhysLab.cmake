@@ -19,12 +19,30 @@ if(EXISTS "${PHYSLAB_ROOT}/solutions")
 endif()
 set_property(GLOBAL PROPERTY PHYSLAB_STAGES "")
 option(PHYSLAB_PREBUILT "Link later labs against prebuilt/ reference libraries when present (student copies)" ON)
+# prebuilt/ is compiled by g++ with libstdc++ for Linux on x86-64 (./physlab publish): it links
+# nowhere else (macOS, arm64, libc++). There the student's own earlier labs are linked instead.
+if(PHYSLAB_PREBUILT AND EXISTS "${PHYSLAB_ROOT}/prebuilt" AND NOT PHYSLAB_HAVE_SOLUTIONS)
+  if(NOT CMAKE_SYSTEM_NAME STREQUAL "Linux" OR NOT CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$"
+     OR CMAKE_CXX_FLAGS MATCHES "-stdlib=libc\\+\\+")
+    message(STATUS "prebuilt/ is for Linux x86-64 with libstdc++, not this build (${CMAKE_SYSTEM_NAME} "
+                   "${CMAKE_SYSTEM_PROCESSOR} ${CMAKE_CXX_FLAGS}): later labs link your own earlier labs")
+    set(PHYSLAB_PREBUILT OFF)
+  endif()
+endif()
 
-set(PHYSLAB_WARNING_FLAGS -Wall -Wextra -Wpedantic -Wshadow)
+option(PHYSLAB_PORTABLE_RUNNER "Test runner without the grader's notary (automatic where executables are not ELF: macOS, Windows)" OFF)
+
+if(MSVC)
+  set(PHYSLAB_WARNING_FLAGS /W4 /permissive-)
+else()
+  set(PHYSLAB_WARNING_FLAGS -Wall -Wextra -Wpedantic -Wshadow)
+endif()
 
 function(physlab_warnings target)
   target_compile_options(${target} PRIVATE ${PHYSLAB_WARNING_FLAGS})
-  if(PHYSLAB_WERROR)
+  if(PHYSLAB_WERROR AND MSVC)
+    target_compile_options(${target} PRIVATE /WX)
+  elseif(PHYSLAB_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
 endfunction()
@@ -74,7 +92,15 @@ function(physlab_add_common)
   physlab_warnings(physlab_test_runner)
   # Catch2's implementation: -O1 compiles it in 20 s instead of 29 (it is on the path to every
   # test executable) and runs the assertions as fast for the tests' purposes.
-  target_compile_options(physlab_test_runner PRIVATE -O1)
+  target_compile_options(physlab_test_runner PRIVATE $<IF:$<CXX_COMPILER_ID:MSVC>,/O1,-O1>)
+  # The grader's notary forks in .preinit_array: ELF executables only. Elsewhere, or on request
+  # (CI checks that path on Linux), the runner is the portable one (see runner.cpp), and
+  # toolchain.json says so: the grader refuses to grade with it.
+  set(notary true)
+  if(PHYSLAB_PORTABLE_RUNNER OR NOT CMAKE_EXECUTABLE_FORMAT STREQUAL "ELF")
+    set(notary false)
+    target_compile_definitions(physlab_test_runner PRIVATE PHYSLAB_PORTABLE_RUNNER)
+  endif()
 
   # What the grader needs to compile a submission apart from this tree and link it with the
   # instructor's objects (tools/grader.py reads it; see the Grading page).
@@ -82,6 +108,7 @@ function(physlab_add_common)
   list(JOIN PHYSLAB_WARNING_FLAGS " " warnings)
   file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/grading/toolchain.json" CONTENT "{
   \"compiler\": \"${CMAKE_CXX_COMPILER}\",
+  \"notary\": ${notary},
   \"flags\": \"${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${build_type}} ${CMAKE_CXX17_STANDARD_COMPILE_OPTION}\",
   \"warnings\": \"${warnings}\",
   \"include\": \"${PHYSLAB_ROOT}/common/include\",

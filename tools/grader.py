@@ -728,6 +728,13 @@ class Kit:
     and flags, and per stage the test, hidden-test and framework objects and earlier stages'
     reference libraries. None of it is ever shown to student code."""
 
+    def require_notary(self) -> None:
+        """Grading trusts only the notary's verdict: refuse a build whose runner has none."""
+        if self.toolchain.get("notary") is not True:
+            raise RuntimeError("this build's test runner has no notary (the portable runner, built on "
+                               "a non-ELF system or with -DPHYSLAB_PORTABLE_RUNNER=ON): its verdicts come "
+                               "from the process that runs student code; grade with a Linux build")
+
     def __init__(self, build: Path):
         folder = build / "grading"
         if not (folder / "toolchain.json").exists():
@@ -1342,6 +1349,7 @@ def cmd_grade(args) -> int:
             make_private(path)
     try:
         kit = Kit(Path(args.build).resolve())
+        kit.require_notary()
     except Exception as error:  # no usable instructor build: every submission still gets its files
         for sub_path in args.submissions:
             target = out if len(args.submissions) == 1 else out / Path(sub_path).absolute().name
