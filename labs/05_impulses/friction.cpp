@@ -7,6 +7,8 @@
 namespace physlab {
 
 Vec3 frictionImpulse(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double j_max) {
+  // Refuse a normal that is not a unit vector and a bound that is negative or NaN (+infinity: none)
+  // TODO(student): requireUnit(n, "... normal n"); requireInRange(j_max, 0, +infinity, "... bound j_max").
   // Project the relative velocity onto the tangent plane
   // TODO(student): v = relativeVelocity(A, B, p); v_t = v - (v . n) n; return zero when |v_t| == 0; t = v_t / |v_t|.
   // Find the impulse along -t that stops the sliding

@@ -9,6 +9,11 @@
 namespace physlab {
 
 int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
+  // Refuse bad bodies and contacts before anything changes
+  // TODO(student): one pass before the warm start, throwing InvalidInput that names the contact (or body) and field when
+  // TODO(student): a body's inv_mass < 0 or not finite; c.a or c.b outside [0, bodies.size()); |c.n| off 1 by more than 1e-9
+  // TODO(student): or NaN; c.p not finite; c.epsilon outside [0, 1]; c.mu < 0 or not finite; c.v_rel_minus not finite;
+  // TODO(student): c.j < 0 or not finite; c.j_t not finite. Build the message only when throwing (no strings otherwise).
   // Warm start: apply the impulses carried over from the last step
   // TODO(student): applyImpulse(A, B, p, c.j n + c.j_t) for every contact before the first sweep (whatever settings.warm_start says).
   // Aim at v_rel+ = -epsilon v_rel-, decided before the solve (resting points aim at 0), and
@@ -27,6 +32,8 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
 }
 
 int solveSimultaneous(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
+  // Refuse bad bodies and contacts before anything changes
+  // TODO(student): the same checks as solveSequential (share them in a helper), before anything changes.
   // Count the points on each moving body, to split a body's correction between them
   // TODO(student): points_on[i] = contacts touching body i when bodies[i].inv_mass > 0; share = 1 / max(1, on a, on b).
   // Warm start: apply the impulses carried over from the last step

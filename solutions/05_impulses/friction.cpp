@@ -7,6 +7,9 @@
 namespace physlab {
 
 Vec3 frictionImpulse(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double j_max) {
+  // Refuse a normal that is not a unit vector and a bound that is negative or NaN (+infinity: none)
+  requireUnit(n, "frictionImpulse normal n");
+  requireInRange(j_max, 0.0, std::numeric_limits<double>::infinity(), "frictionImpulse bound j_max");
   // Project the relative velocity onto the tangent plane
   const Vec3 v = relativeVelocity(A, B, p);
   const Vec3 v_t = v - v.dot(n) * n;

@@ -1,7 +1,9 @@
 // Lab 5, sections 5-6: many contact points, sequentially (Gauss-Seidel) and simultaneously
 // (Jacobi), with accumulated impulses, clamping and warm starting.
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <string>
 
 #include "physlab/error.hpp"
 #include "physlab/world.hpp"
@@ -18,9 +20,40 @@ Vec3 clampToCone(const Vec3& j_t, double j_max) {
 
 constexpr double kUnlimited = std::numeric_limits<double>::infinity();
 
+// InvalidInput naming what is wrong with an element of a solver's input, built only on failure.
+[[noreturn, gnu::cold, gnu::noinline]] void refuse(const char* solver, const char* element, std::size_t index,
+                                                   const char* what) {
+  throw InvalidInput(std::string(solver) + " " + element + " " + std::to_string(index) + " " + what);
+}
+
+// Every check the sweeps' functions would make, once and before any body changes, so that a
+// refused input leaves bodies and contacts as they were: O(bodies + contacts), no strings.
+void requireSolvable(const std::vector<ContactBody>& bodies, const std::vector<Contact>& contacts, const char* solver) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!(bodies[i].inv_mass >= 0.0 && bodies[i].inv_mass < kUnlimited)) {
+      refuse(solver, "body", i, "inverse mass inv_mass must be non-negative and finite");
+    }
+  }
+  const int count = static_cast<int>(bodies.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    if (c.a < 0 || c.a >= count) refuse(solver, "contact", k, "body index a is not a body");
+    if (c.b < 0 || c.b >= count) refuse(solver, "contact", k, "body index b is not a body");
+    if (!(std::abs(c.n.norm() - 1.0) <= 1e-9)) refuse(solver, "contact", k, "normal n must be a finite unit vector");
+    if (firstNonFinite(c.p) >= 0) refuse(solver, "contact", k, "point p must be finite");
+    if (!(c.epsilon >= 0.0 && c.epsilon <= 1.0)) refuse(solver, "contact", k, "restitution epsilon must be in [0, 1]");
+    if (!(c.mu >= 0.0 && c.mu < kUnlimited)) refuse(solver, "contact", k, "friction mu must be non-negative and finite");
+    if (!std::isfinite(c.v_rel_minus)) refuse(solver, "contact", k, "v_rel_minus must be finite");
+    if (!(c.j >= 0.0 && c.j < kUnlimited)) refuse(solver, "contact", k, "impulse j must be non-negative and finite");
+    if (firstNonFinite(c.j_t) >= 0) refuse(solver, "contact", k, "friction impulse j_t must be finite");
+  }
+}
+
 }  // namespace
 
 int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
+  // Refuse bad bodies and contacts before anything changes
+  requireSolvable(bodies, contacts, "solveSequential");
   // Warm start: apply the impulses carried over from the last step
   for (const Contact& c : contacts) applyImpulse(bodies[c.a], bodies[c.b], c.p, c.j * c.n + c.j_t);
   int sweeps = 0;
@@ -57,6 +90,8 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
 }
 
 int solveSimultaneous(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
+  // Refuse bad bodies and contacts before anything changes
+  requireSolvable(bodies, contacts, "solveSimultaneous");
   // Count the points on each moving body, to split a body's correction between them
   std::vector<int> points_on(bodies.size(), 0);
   for (const Contact& c : contacts) {

@@ -17,6 +17,29 @@ void requireBody(const std::vector<ContactBody>& bodies, int index, std::size_t 
   }
 }
 
+// InvalidInput naming row i's field, built only on failure.
+[[noreturn, gnu::cold, gnu::noinline]] void refuseRow(std::size_t row, const char* what) {
+  throw InvalidInput("contact row " + std::to_string(row) + " " + what);
+}
+
+// Row i names two existing bodies, at a finite point, along a finite unit direction.
+void requireRow(const std::vector<ContactBody>& bodies, const ContactRow& row, std::size_t i) {
+  requireBody(bodies, row.a, i);
+  requireBody(bodies, row.b, i);
+  if (!(std::abs(row.d.norm() - 1.0) <= 1e-9)) refuseRow(i, "direction d must be a finite unit vector");
+  if (firstNonFinite(row.p) >= 0) refuseRow(i, "point p must be finite");
+}
+
+// Every body's inverse mass is >= 0 and finite (0: fixed) and its inverse inertia finite.
+void requireInverses(const std::vector<ContactBody>& bodies) {
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (!(bodies[k].inv_mass >= 0.0 && std::isfinite(bodies[k].inv_mass)) || firstNonFinite(bodies[k].I_inv_world) >= 0) {
+      throw InvalidInput("body " + std::to_string(k) + " inverse mass inv_mass must be non-negative and finite, " +
+                         "and its inverse inertia I_inv_world finite");
+    }
+  }
+}
+
 // The velocity change at p of `body` caused by the impulse J at q on it.
 Vec3 velocityChange(const ContactBody& body, const Vec3& J, const Vec3& q, const Vec3& p) {
   return body.inv_mass * J + (body.I_inv_world * (q - body.x).cross(J)).cross(p - body.x);
@@ -25,10 +48,8 @@ Vec3 velocityChange(const ContactBody& body, const Vec3& J, const Vec3& q, const
 }  // namespace
 
 MatX contactMatrix(const std::vector<ContactBody>& bodies, const std::vector<ContactRow>& rows) {
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    requireBody(bodies, rows[i].a, i);
-    requireBody(bodies, rows[i].b, i);
-  }
+  requireInverses(bodies);
+  for (std::size_t i = 0; i < rows.size(); ++i) requireRow(bodies, rows[i], i);
   const Index n = static_cast<Index>(rows.size());
   MatX A = MatX::Zero(n, n);
   for (Index i = 0; i < n; ++i) {
@@ -51,11 +72,11 @@ MatX contactMatrix(const std::vector<ContactBody>& bodies, const std::vector<Con
 VecX accelerationBias(const std::vector<ContactBody>& bodies, const std::vector<AppliedLoads>& loads,
                       const std::vector<ContactRow>& normals) {
   requireSize(static_cast<Index>(loads.size()), static_cast<Index>(bodies.size()), "accelerationBias loads");
+  requireInverses(bodies);
   VecX b(static_cast<Index>(normals.size()));
   for (std::size_t i = 0; i < normals.size(); ++i) {
     const ContactRow& row = normals[i];
-    requireBody(bodies, row.a, i);
-    requireBody(bodies, row.b, i);
+    requireRow(bodies, row, i);
     // Acceleration of each touching point with no contact force: linear, angular, centripetal
     auto pointAcceleration = [&](int k) -> Vec3 {
       const ContactBody& body = bodies[k];
@@ -79,11 +100,11 @@ VecX velocityBias(const std::vector<ContactBody>& bodies, const std::vector<Cont
   requirePositive(h, "velocityBias step size h");
   if (!(baumgarte >= 0.0 && baumgarte <= 1.0)) throw InvalidInput("velocityBias Baumgarte factor must be in [0, 1]");
   requireNonNegative(slop, "velocityBias slop");
+  requireFinite(depths, "velocityBias depths");
   VecX b(depths.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const ContactRow& row = rows[i];
-    requireBody(bodies, row.a, i);
-    requireBody(bodies, row.b, i);
+    requireRow(bodies, row, i);
     // Relative velocity along the row now, less the speed that removes a fraction of the overlap
     const double v_rel = row.d.dot(relativeVelocity(bodies[row.a], bodies[row.b], row.p));
     const double overlap = std::max(0.0, depths(static_cast<Index>(i)) - slop);
@@ -100,6 +121,8 @@ LcpProblem frictionPyramid(const MatX& A, const VecX& b, const VecX& mu, int k) 
                        " for " + std::to_string(m) + " contacts and k = " + std::to_string(k));
   }
   requireSize(b.size(), rows, "friction pyramid b");
+  requireFinite(A, "friction pyramid A");
+  requireFinite(b, "friction pyramid b");
   for (Index i = 0; i < m; ++i) requireNonNegative(mu(i), "friction pyramid mu of contact " + std::to_string(i));
   // Normal and direction rows keep A and b; the sliding speeds gamma join them
   LcpProblem lcp;

@@ -4,9 +4,11 @@
 #include <limits>
 
 #include "impulse_support.hpp"
+#include "physlab/error.hpp"
 
 using namespace physlab;
 using namespace physlab::test;
+using Catch::Matchers::Contains;
 
 TEST_CASE("particle-plane: the normal velocity reverses and shrinks by epsilon, the tangential stays", "[lab05][pts=1]") {
   const double m = uniform(0.1, 10.0), epsilon = uniform(0.0, 1.0);
@@ -184,4 +186,150 @@ TEST_CASE("penalty: the force is max(0, k depth - d v_rel) along n, never pullin
   // No damper, d = 0 (Settings' default): the spring alone, whatever the velocity (round-off only)
   CHECK((penaltyForce(depth, approaching, n, k, 0.0) - spring * n).norm() <= 1e-12 * spring);
   CHECK((penaltyForce(depth, fast, n, k, 0.0) - spring * n).norm() <= 1e-12 * spring);
+}
+
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Every field of a body, exactly (a NaN inverse mass equal to a NaN one): a refused call must
+// leave it as it was.
+bool sameBody(const ContactBody& X, const ContactBody& Y) {
+  const bool same_inv_mass = X.inv_mass == Y.inv_mass || (std::isnan(X.inv_mass) && std::isnan(Y.inv_mass));
+  return X.x == Y.x && X.v == Y.v && X.omega == Y.omega && same_inv_mass && X.I_inv_world == Y.I_inv_world;
+}
+
+}  // namespace
+
+TEST_CASE("particle-plane: bad input is refused naming it; epsilon exactly 0 and 1 and a normal off by round-off are allowed", "[lab05][pts=1]") {
+  const double m = uniform(0.1, 10.0);
+  const Vec3 n = randomVec3(1.0).normalized();
+  Vec3 v = randomVec3(2.0);
+  if (v.dot(n) > 0.0) v = -v;
+  // The ends of [0, 1] and a normal whose length is 1 up to round-off (far inside 1e-9) are valid
+  const Vec3 stopped = particlePlaneResponse(m, v, n, 0.0);
+  CHECK(std::abs(stopped.dot(n)) <= 1e-12 * v.norm());  // v - (v . n) n: round-off only
+  CHECK(particlePlaneResponse(m, v, n, 1.0).dot(n) == Approx(-v.dot(n)).epsilon(1e-12));
+  CHECK_NOTHROW(particlePlaneResponse(m, v, Vec3(n * (1.0 + 1e-12)), 0.5));
+  // epsilon above 1 would gain energy; below 0 or NaN it is no restitution at all
+  for (const double epsilon : {1.0 + 1e-9, 1.5, -1e-9, -0.1, kNan}) {
+    INFO("epsilon " << epsilon);
+    CHECK_THROWS_AS(particlePlaneResponse(m, v, n, epsilon), InvalidInput);
+    CHECK_THROWS_WITH(particlePlaneResponse(m, v, n, epsilon), Contains("epsilon"));
+  }
+  for (const double bad : {0.0, -m, kNan, kInf}) {
+    INFO("m " << bad);
+    CHECK_THROWS_AS(particlePlaneResponse(bad, v, n, 0.5), InvalidInput);
+    CHECK_THROWS_WITH(particlePlaneResponse(bad, v, n, 0.5), Contains("mass m"));
+  }
+  // A normal that is not unit scales the impulse; a NaN one gives a NaN velocity
+  for (const Vec3& bad : {Vec3(2.0 * n), Vec3(n * (1.0 + 1e-8)), Vec3(Vec3::Zero()), Vec3(kNan, 0.0, 1.0)}) {
+    INFO("n " << bad.transpose());
+    CHECK_THROWS_AS(particlePlaneResponse(m, v, bad, 0.5), InvalidInput);
+    CHECK_THROWS_WITH(particlePlaneResponse(m, v, bad, 0.5), Contains("normal n"));
+  }
+  CHECK_THROWS_WITH(particlePlaneResponse(m, Vec3(0.0, kInf, -1.0), n, 0.5), Contains("v_minus"));
+}
+
+TEST_CASE("rigid impulse: bad input to the impulse functions is refused naming it, and applyImpulse then changes neither body", "[lab05][pts=2]") {
+  const RandomPair s = randomPair(), fixed = randomPair(true);
+  // Valid: the ends of epsilon, a fixed B (inverse mass exactly 0), a normal off by round-off
+  const double j = impulseMagnitude(s.A, s.B, s.p, s.n, 0.0);
+  CHECK(j > 0.0);
+  CHECK(impulseMagnitude(s.A, s.B, s.p, s.n, 1.0) == Approx(2.0 * j).epsilon(1e-12));
+  CHECK_NOTHROW(impulseMagnitude(fixed.A, fixed.B, fixed.p, Vec3(fixed.n * (1.0 - 1e-12)), 0.5));
+  CHECK_NOTHROW(inverseEffectiveMass(fixed.A, fixed.B, fixed.p, Vec3(fixed.n * (1.0 + 1e-12))));
+  // impulseMagnitude: epsilon outside [0, 1] or NaN, a normal that is not unit
+  for (const double epsilon : {1.5, 1.0 + 1e-9, -1e-9, kNan}) {
+    INFO("epsilon " << epsilon);
+    CHECK_THROWS_AS(impulseMagnitude(s.A, s.B, s.p, s.n, epsilon), InvalidInput);
+    CHECK_THROWS_WITH(impulseMagnitude(s.A, s.B, s.p, s.n, epsilon), Contains("epsilon"));
+  }
+  for (const Vec3& bad : {Vec3(1.5 * s.n), Vec3(s.n * (1.0 - 1e-8)), Vec3(Vec3::Zero()), Vec3(kNan, 0.0, 1.0)}) {
+    INFO("n " << bad.transpose());
+    CHECK_THROWS_WITH(impulseMagnitude(s.A, s.B, s.p, bad, 0.5), Contains("normal n"));
+    CHECK_THROWS_WITH(inverseEffectiveMass(s.A, s.B, s.p, bad), Contains("direction d"));
+  }
+  // Negative or non-finite inverse masses, in A or in B
+  for (const double bad : {-uniform(0.1, 1.0), kNan, kInf}) {
+    INFO("inverse mass " << bad);
+    RandomPair t = s;
+    t.A.inv_mass = bad;
+    CHECK_THROWS_AS(inverseEffectiveMass(t.A, t.B, t.p, t.n), InvalidInput);
+    CHECK_THROWS_WITH(inverseEffectiveMass(t.A, t.B, t.p, t.n), Contains("body A inverse mass"));
+    CHECK_THROWS_AS(impulseMagnitude(t.A, t.B, t.p, t.n, 0.5), InvalidInput);
+    ContactBody A = t.A, B = t.B;
+    CHECK_THROWS_WITH(applyImpulse(A, B, t.p, j * t.n), Contains("body A inverse mass"));
+    CHECK(sameBody(A, t.A));
+    CHECK(sameBody(B, t.B));
+    t = s;
+    t.B.inv_mass = bad;
+    CHECK_THROWS_WITH(inverseEffectiveMass(t.A, t.B, t.p, t.n), Contains("body B inverse mass"));
+    A = t.A;
+    B = t.B;
+    // Checked before anything changes: A untouched although only B is bad
+    CHECK_THROWS_WITH(applyImpulse(A, B, t.p, j * t.n), Contains("body B inverse mass"));
+    CHECK(sameBody(A, t.A));
+    CHECK(sameBody(B, t.B));
+  }
+  // Points and impulses that are not finite
+  const Vec3 bad_point(s.p.x(), kNan, s.p.z());
+  CHECK_THROWS_WITH(relativeVelocity(s.A, s.B, bad_point), Contains("point p"));
+  ContactBody A = s.A, B = s.B;
+  CHECK_THROWS_WITH(applyImpulse(A, B, bad_point, j * s.n), Contains("point p"));
+  CHECK_THROWS_WITH(applyImpulse(A, B, s.p, Vec3(0.0, 0.0, kInf)), Contains("impulse J"));
+  CHECK(sameBody(A, s.A));
+  CHECK(sameBody(B, s.B));
+  // inverseInertiaWorld: any non-zero q is normalised, a zero or NaN one is no orientation
+  const Mat3 I_inv = randomInertiaTensor().inverse();
+  CHECK_NOTHROW(inverseInertiaWorld(I_inv, Quat(uniform(0.1, 3.0), 0.0, 0.0, 0.0)));
+  CHECK_THROWS_WITH(inverseInertiaWorld(I_inv, Quat(0.0, 0.0, 0.0, 0.0)), Contains("orientation q"));
+  CHECK_THROWS_WITH(inverseInertiaWorld(I_inv, Quat(kNan, 0.0, 0.0, 1.0)), Contains("orientation q"));
+  Mat3 bad_inertia = I_inv;
+  bad_inertia(1, 2) = kNan;
+  CHECK_THROWS_WITH(inverseInertiaWorld(bad_inertia, Quat::Identity()), Contains("I_body_inv"));
+}
+
+TEST_CASE("friction: a normal that is not unit and a negative or NaN j_max are refused; j_max = 0 and +infinity are allowed", "[lab05][pts=1]") {
+  const RandomPair s = randomPair();
+  // +infinity is "no bound" (the solvers pass it), 0 is "no friction": both valid
+  const Vec3 unbounded = frictionImpulse(s.A, s.B, s.p, s.n, kInf);
+  CHECK(std::isfinite(unbounded.norm()));
+  CHECK(frictionImpulse(s.A, s.B, s.p, s.n, 0.0) == Vec3::Zero());
+  CHECK_NOTHROW(frictionImpulse(s.A, s.B, s.p, Vec3(s.n * (1.0 + 1e-12)), 1.0));
+  for (const double bad : {-1e-12, -uniform(0.1, 1.0), -kInf, kNan}) {
+    INFO("j_max " << bad);
+    CHECK_THROWS_AS(frictionImpulse(s.A, s.B, s.p, s.n, bad), InvalidInput);
+    CHECK_THROWS_WITH(frictionImpulse(s.A, s.B, s.p, s.n, bad), Contains("j_max"));
+  }
+  for (const Vec3& bad : {Vec3(1.1 * s.n), Vec3(s.n * (1.0 + 1e-8)), Vec3(kNan, kNan, kNan)}) {
+    INFO("n " << bad.transpose());
+    CHECK_THROWS_AS(frictionImpulse(s.A, s.B, s.p, bad, 1.0), InvalidInput);
+    CHECK_THROWS_WITH(frictionImpulse(s.A, s.B, s.p, bad, 1.0), Contains("normal n"));
+  }
+}
+
+TEST_CASE("penalty: a negative depth, stiffness or damping, a NaN velocity and a normal that is not unit are refused", "[lab05][pts=1]") {
+  const double k = std::pow(10.0, uniform(3.0, 5.0)), d = uniform(1.0, 100.0), depth = uniform(1e-4, 1e-2);
+  const Vec3 n = randomVec3(1.0).normalized();
+  // The ends: just touching (depth 0), no damper (d = 0), a normal off by round-off
+  CHECK(penaltyForce(0.0, 0.0, n, k, 0.0) == Vec3::Zero());
+  CHECK_NOTHROW(penaltyForce(depth, -1.0, Vec3(n * (1.0 + 1e-12)), k, d));
+  for (const double bad : {-1e-12, -depth, kNan, kInf}) {
+    INFO("depth " << bad);
+    CHECK_THROWS_AS(penaltyForce(bad, -1.0, n, k, d), InvalidInput);
+    CHECK_THROWS_WITH(penaltyForce(bad, -1.0, n, k, d), Contains("depth"));
+  }
+  CHECK_THROWS_WITH(penaltyForce(depth, kNan, n, k, d), Contains("v_rel"));
+  CHECK_THROWS_WITH(penaltyForce(depth, -1.0, Vec3(2.0 * n), k, d), Contains("normal n"));
+  CHECK_THROWS_WITH(penaltyForce(depth, -1.0, Vec3(kNan, 0.0, 1.0), k, d), Contains("normal n"));
+  for (const double bad : {0.0, -k, kNan, kInf}) {
+    INFO("k " << bad);
+    CHECK_THROWS_WITH(penaltyForce(depth, -1.0, n, bad, d), Contains("stiffness k"));
+  }
+  for (const double bad : {-1e-12, -d, kNan, kInf}) {
+    INFO("d " << bad);
+    CHECK_THROWS_WITH(penaltyForce(depth, -1.0, n, k, bad), Contains("damping d"));
+  }
 }

@@ -3,12 +3,16 @@
 // sweep on one random two-body point and the first sweeps on a box against oracles written here
 // from world.hpp; the restitution threshold; and the bookkeeping of accumulated impulses.
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <string>
 
 #include "impulse_support.hpp"
+#include "physlab/error.hpp"
 
 using namespace physlab;
 using namespace physlab::test;
+using Catch::Matchers::Contains;
 
 namespace {
 
@@ -940,5 +944,93 @@ TEST_CASE("sequential and simultaneous impulses: a sweep changing velocities by 
     INFO(responseMethodName(method) << ", 1 sweep allowed");
     CHECK(solveWith(method, s, settings) == 1);
     CHECK(s.bodies[0].v.z() == 0.5);  // exact: -1 + 3 / 2
+  }
+}
+
+namespace {
+
+// Equal, or both NaN: a refused contact may carry a NaN, and must still be exactly as it was.
+bool same(double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); }
+bool same(const Vec3& x, const Vec3& y) { return same(x.x(), y.x()) && same(x.y(), y.y()) && same(x.z(), y.z()); }
+
+bool unchanged(const BoxOnGround& before, const BoxOnGround& after) {
+  for (std::size_t i = 0; i < before.bodies.size(); ++i) {
+    const ContactBody &X = before.bodies[i], &Y = after.bodies[i];
+    if (!(same(X.v, Y.v) && same(X.omega, Y.omega) && same(X.inv_mass, Y.inv_mass))) return false;
+  }
+  for (std::size_t k = 0; k < before.contacts.size(); ++k) {
+    if (!(same(before.contacts[k].j, after.contacts[k].j) && same(before.contacts[k].j_t, after.contacts[k].j_t))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("sequential and simultaneous impulses: bad bodies and contacts are refused naming them, before anything changes", "[lab05][pts=2]") {
+  // The box with friction and a warm start, the ground last: bodies 0 (box), 1 (a spare sphere
+  // far away) and 2 (ground), so the contacts use the first and the last index
+  BoxOnGround base = boxOnGround(0.5, 0.4);
+  ContactBody spare;
+  spare.x = Vec3(10.0, 0.0, 1.0);
+  spare.inv_mass = 1.0;
+  spare.I_inv_world = Mat3::Identity();
+  base.bodies.insert(base.bodies.begin() + 1, spare);
+  for (Contact& c : base.contacts) {
+    c.b = 2;
+    c.j = uniform(0.001, 0.01);  // a warm start that moves the box before the first sweep
+  }
+  const int last = static_cast<int>(base.contacts.size()) - 1;
+  Settings settings;
+  for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
+    INFO(responseMethodName(method));
+    auto solve = [&](BoxOnGround& s) {
+      return method == ResponseMethod::Sequential ? solveSequential(s.bodies, s.contacts, settings)
+                                                  : solveSimultaneous(s.bodies, s.contacts, settings);
+    };
+    // Valid: indices 0 and size - 1, epsilon 0 and 1, mu 0, a normal off by round-off
+    BoxOnGround ok = base;
+    ok.contacts[0].epsilon = 1.0;
+    ok.contacts[last].epsilon = 0.0;
+    ok.contacts[last].mu = 0.0;
+    ok.contacts[last].n *= 1.0 + 1e-12;
+    CHECK(solve(ok) >= 1);
+    CHECK(ok.bodies[0].v != base.bodies[0].v);
+    // Each bad field on the last contact, so that a solver checking as it goes would already
+    // have applied the warm start and earlier points: the message names the contact and the field
+    const std::string where = "contact " + std::to_string(last);
+    auto refused = [&](const std::function<void(Contact&)>& spoil, const std::string& words) {
+      BoxOnGround spoilt = base;
+      spoil(spoilt.contacts[static_cast<std::size_t>(last)]);
+      INFO("expected: " << words);
+      BoxOnGround s = spoilt;
+      CHECK_THROWS_AS(solve(s), InvalidInput);
+      s = spoilt;
+      CHECK_THROWS_WITH(solve(s), Contains(where) && Contains(words));
+      CHECK(unchanged(spoilt, s));
+    };
+    refused([](Contact& c) { c.a = 3; }, "body index a");
+    refused([](Contact& c) { c.a = -1; }, "body index a");
+    refused([](Contact& c) { c.b = 3; }, "body index b");
+    refused([](Contact& c) { c.b = -1; }, "body index b");
+    refused([](Contact& c) { c.n *= 1.5; }, "normal n");
+    refused([](Contact& c) { c.n *= 1.0 + 1e-8; }, "normal n");
+    refused([](Contact& c) { c.n.x() = std::nan(""); }, "normal n");
+    refused([](Contact& c) { c.p.y() = std::numeric_limits<double>::infinity(); }, "point p");
+    refused([](Contact& c) { c.epsilon = 1.5; }, "epsilon");
+    refused([](Contact& c) { c.epsilon = -1e-9; }, "epsilon");
+    refused([](Contact& c) { c.epsilon = std::nan(""); }, "epsilon");
+    refused([](Contact& c) { c.mu = -0.1; }, "mu");
+    refused([](Contact& c) { c.mu = std::nan(""); }, "mu");
+    refused([](Contact& c) { c.v_rel_minus = std::nan(""); }, "v_rel_minus");
+    refused([](Contact& c) { c.j = -0.1; }, "impulse j");
+    refused([](Contact& c) { c.j_t.z() = std::nan(""); }, "j_t");
+    // A negative or NaN inverse mass; with it restored, nothing else differs
+    for (const double bad : {-1.0, std::nan("")}) {
+      BoxOnGround s = base;
+      s.bodies[0].inv_mass = bad;
+      CHECK_THROWS_WITH(solve(s), Contains("body 0") && Contains("inverse mass"));
+      s.bodies[0].inv_mass = base.bodies[0].inv_mass;
+      CHECK(unchanged(base, s));
+    }
   }
 }

@@ -2,7 +2,13 @@
 // the separation's second derivative found by finite differences, the velocity-level b by hand,
 // and the friction pyramid's LCP against a sliding contact solved by hand.
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "physlab/error.hpp"
 #include "physlab/resting.hpp"
 #include "support.hpp"
 
@@ -416,4 +422,115 @@ TEST_CASE("friction pyramid: the smallest pyramid (k = 3) with a frictionless co
   // Copies and constants: exact
   CHECK(lcp.A == expected);
   CHECK(lcp.b == expected_b);
+}
+
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Three moving bodies and a fixed one last, and a valid row between the first and the last.
+struct RowScene {
+  std::vector<ContactBody> bodies;
+  ContactRow row;
+};
+
+RowScene rowScene() {
+  RowScene s;
+  Mat3 I;
+  for (int k = 0; k < 3; ++k) s.bodies.push_back(randomBody(I));
+  s.bodies.push_back(fixedBody(randomVec3(1.0)));
+  s.row = {0, 3, randomVec3(1.0), randomVec3(1.0).normalized()};
+  return s;
+}
+
+// The rows every row-taking function must refuse, each with the words its message must contain.
+std::vector<std::pair<ContactRow, std::string>> badRows(const ContactRow& good) {
+  std::vector<std::pair<ContactRow, std::string>> bad;
+  auto add = [&](const std::function<void(ContactRow&)>& spoil, const std::string& words) {
+    ContactRow row = good;
+    spoil(row);
+    bad.emplace_back(row, words);
+  };
+  add([](ContactRow& r) { r.a = 4; }, "names body 4");
+  add([](ContactRow& r) { r.b = 4; }, "names body 4");
+  add([](ContactRow& r) { r.a = -1; }, "names body -1");
+  add([](ContactRow& r) { r.d *= 1.5; }, "direction d");
+  add([](ContactRow& r) { r.d *= 1.0 - 1e-8; }, "direction d");
+  add([](ContactRow& r) { r.d = Vec3::Zero(); }, "direction d");
+  add([](ContactRow& r) { r.d.y() = kNan; }, "direction d");
+  add([](ContactRow& r) { r.p.z() = kInf; }, "point p");
+  return bad;
+}
+
+}  // namespace
+
+TEST_CASE("contact matrix: rows naming no body, directions that are not unit, bad points and inverse masses are refused naming them", "[lab06][pts=1]") {
+  RowScene s = rowScene();
+  // Valid: indices 0 and size - 1 either way round, a direction off by round-off, a fixed body
+  ContactRow rounded = s.row;
+  rounded.d *= 1.0 + 1e-12;
+  const MatX A = contactMatrix(s.bodies, {s.row, {3, 0, s.row.p, s.row.d}, rounded});
+  CHECK(A.rows() == 3);
+  for (const auto& [row, words] : badRows(s.row)) {
+    INFO("expected: " << words);
+    // The bad row second: the message names row 1
+    CHECK_THROWS_AS(contactMatrix(s.bodies, {s.row, row}), InvalidInput);
+    CHECK_THROWS_WITH(contactMatrix(s.bodies, {s.row, row}), Contains("row 1") && Contains(words));
+  }
+  // Negative or non-finite inverse masses, a NaN inverse inertia: a body the rows name or not
+  for (const double bad : {-uniform(0.1, 1.0), kNan, kInf}) {
+    INFO("inverse mass " << bad);
+    std::vector<ContactBody> bodies = s.bodies;
+    bodies[2].inv_mass = bad;
+    CHECK_THROWS_AS(contactMatrix(bodies, {s.row}), InvalidInput);
+    CHECK_THROWS_WITH(contactMatrix(bodies, {s.row}), Contains("body 2 inverse mass"));
+  }
+  std::vector<ContactBody> bodies = s.bodies;
+  bodies[0].I_inv_world(2, 1) = kNan;
+  CHECK_THROWS_WITH(contactMatrix(bodies, {s.row}), Contains("body 0") && Contains("I_inv_world"));
+}
+
+TEST_CASE("Baraff's b and velocity bias: bad rows, inverse masses and depths are refused naming them", "[lab06][pts=1]") {
+  RowScene s = rowScene();
+  const std::vector<AppliedLoads> loads(s.bodies.size());
+  // Valid: indices 0 and size - 1, a direction off by round-off, depth 0
+  ContactRow rounded = s.row;
+  rounded.d *= 1.0 - 1e-12;
+  const std::vector<ContactRow> good = {s.row, rounded};
+  CHECK(accelerationBias(s.bodies, loads, good).size() == 2);
+  CHECK(velocityBias(s.bodies, good, VecX::Zero(2), 0.01, 0.2, 0.001).size() == 2);
+  for (const auto& [row, words] : badRows(s.row)) {
+    INFO("expected: " << words);
+    const std::vector<ContactRow> rows = {s.row, row};
+    CHECK_THROWS_AS(accelerationBias(s.bodies, loads, rows), InvalidInput);
+    CHECK_THROWS_WITH(accelerationBias(s.bodies, loads, rows), Contains("row 1") && Contains(words));
+    CHECK_THROWS_AS(velocityBias(s.bodies, rows, VecX::Zero(2), 0.01, 0.2, 0.001), InvalidInput);
+    CHECK_THROWS_WITH(velocityBias(s.bodies, rows, VecX::Zero(2), 0.01, 0.2, 0.001), Contains("row 1") && Contains(words));
+  }
+  std::vector<ContactBody> bodies = s.bodies;
+  bodies[1].inv_mass = -uniform(0.1, 1.0);
+  CHECK_THROWS_WITH(accelerationBias(bodies, loads, good), Contains("body 1 inverse mass"));
+  for (const double bad : {kNan, kInf, -kInf}) {
+    INFO("depth " << bad);
+    CHECK_THROWS_AS(velocityBias(s.bodies, good, Vec3(0.01, bad, 0.0).head<2>(), 0.01, 0.2, 0.001), InvalidInput);
+    CHECK_THROWS_WITH(velocityBias(s.bodies, good, Vec3(0.01, bad, 0.0).head<2>(), 0.01, 0.2, 0.001), Contains("depths"));
+  }
+}
+
+TEST_CASE("friction pyramid: a NaN or infinite entry of A or b, and an infinite mu, are refused naming them", "[lab06][pts=1]") {
+  const int k = 3;
+  const MatX A = MatX::Identity(2 + 2 * k, 2 + 2 * k);
+  const VecX b = VecX::Constant(2 + 2 * k, -1.0), mu = VecX::Constant(2, 0.5);
+  CHECK(frictionPyramid(A, b, mu, k).A.rows() == 2 + 2 * k + 2);
+  MatX bad_A = A;
+  bad_A(static_cast<Index>(uniform(0, 8)), static_cast<Index>(uniform(0, 8))) = kNan;
+  CHECK_THROWS_AS(frictionPyramid(bad_A, b, mu, k), InvalidInput);
+  CHECK_THROWS_WITH(frictionPyramid(bad_A, b, mu, k), Contains("pyramid A") && Contains("non-finite"));
+  VecX bad_b = b;
+  bad_b(static_cast<Index>(uniform(0, 8))) = -kInf;
+  CHECK_THROWS_AS(frictionPyramid(A, bad_b, mu, k), InvalidInput);
+  CHECK_THROWS_WITH(frictionPyramid(A, bad_b, mu, k), Contains("pyramid b") && Contains("non-finite"));
+  CHECK_THROWS_WITH(frictionPyramid(A, b, Vec3(0.5, kInf, 0.0).head<2>(), k), Contains("mu of contact 1"));
+  CHECK_THROWS_WITH(frictionPyramid(A, b, Vec3(kNan, 0.5, 0.0).head<2>(), k), Contains("mu of contact 0"));
 }

@@ -71,6 +71,19 @@ template <class Derived>
   return -1;
 }
 
+/// requireInRange()'s message, built out of line and only on failure.
+[[noreturn, gnu::cold, gnu::noinline]] inline void throwOutOfRange(std::string_view what, double value, double lo,
+                                                                   double hi) {
+  throw InvalidInput(std::string(what) + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                     std::to_string(value));
+}
+
+/// requireUnit()'s message, built out of line and only on failure.
+[[noreturn, gnu::cold, gnu::noinline]] inline void throwNotUnit(std::string_view what, double length) {
+  throw InvalidInput(std::string(what) + " must be a finite unit vector (length within 1e-9 of 1), got length " +
+                     std::to_string(length));
+}
+
 /// requireFinite()'s message, built out of line for the same reason.
 [[noreturn, gnu::cold, gnu::noinline]] inline void throwNonFinite(std::string_view what, Index row, Index col) {
   throw InvalidInput(std::string(what) + " has a non-finite entry at (" + std::to_string(row) + ", " +
@@ -90,6 +103,18 @@ Index firstNonFinite(const Eigen::DenseBase<Derived>& values) {
 template <class Derived>
 void requireFinite(const Eigen::DenseBase<Derived>& values, std::string_view what) {
   if (const Index k = firstNonFinite(values); k >= 0) detail::throwNonFinite(what, k % values.rows(), k / values.rows());
+}
+
+/// Throw InvalidInput naming `what` unless lo <= value <= hi: both ends allowed, NaN never (hi may
+/// be +infinity, and then so may value).
+inline void requireInRange(double value, double lo, double hi, std::string_view what) {
+  if (!(value >= lo && value <= hi)) detail::throwOutOfRange(what, value, lo, hi);
+}
+
+/// Throw InvalidInput naming `what` unless `v` is finite and of unit length, its length within 1e-9
+/// of 1 as tangentDirections() asks: a normalised vector's round-off passes, a NaN never does.
+inline void requireUnit(const Vec3& v, std::string_view what) {
+  if (const double length = v.norm(); !(std::abs(length - 1.0) <= 1e-9)) detail::throwNotUnit(what, length);
 }
 
 /// Throw InvalidInput unless `actual == expected`, naming both sizes.

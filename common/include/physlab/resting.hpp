@@ -81,20 +81,26 @@ struct LcpProblem {
 /// along row i, \f$d_i \cdot (\Delta\dot p_a - \Delta\dot p_b)\f$ at \f$p_i\f$, caused by a unit
 /// impulse on row j (equally, of relative acceleration per unit force). Symmetric positive
 /// semidefinite; rows on bodies that share no moving body give 0; fixed bodies (zero inverses)
-/// add nothing. InvalidInput when a row names a body that does not exist.
-/// Handout: Lab 6, section 1.
+/// add nothing. InvalidInput when a row names a body that does not exist (an index outside
+/// [0, bodies.size())), a row's direction d is not a finite unit vector (its length off 1 by more
+/// than 1e-9) or its point p not finite, or a body's inv_mass is negative or not finite or its
+/// I_inv_world not finite. Handout: Lab 6, section 1.
 MatX contactMatrix(const std::vector<ContactBody>& bodies, const std::vector<ContactRow>& rows);
 
 /// Baraff's \f$b_i\f$ for normal rows (d = \f$\hat n_i\f$): the relative normal acceleration with every
 /// contact force zero, plus \f$2 \dot{\hat n}_i \cdot (\dot p_a - \dot p_b)\f$ with
 /// \f$\dot{\hat n}_i = \omega_b \times \hat n_i\f$; see the file's formula [m/s^2]. `loads` has one
-/// entry per body (a fixed body's are ignored). Handout: Lab 6, section 2.
+/// entry per body (a fixed body's are ignored). InvalidInput when `loads` has another size, and on
+/// the rows and bodies contactMatrix() refuses. Handout: Lab 6, section 2.
 VecX accelerationBias(const std::vector<ContactBody>& bodies, const std::vector<AppliedLoads>& loads,
                       const std::vector<ContactRow>& normals);
 
 /// The velocity-level \f$b_i\f$: the relative velocity along row i now,
 /// \f$d_i \cdot (\dot p_a - \dot p_b)\f$, minus \f$\frac{\beta}{h}\max(0, depth_i - slop)\f$ (depth_i > 0
 /// overlapping; a friction row passes depth 0) [m/s]. `depths` has one entry per row.
+/// InvalidInput when `depths` has another size or a non-finite entry, h is not positive and finite,
+/// \f$\beta\f$ is outside [0, 1], slop is negative or not finite, or a row names a body that does not
+/// exist, has a direction that is not a finite unit vector or a point that is not finite.
 /// Handout: Lab 6, section 7.
 VecX velocityBias(const std::vector<ContactBody>& bodies, const std::vector<ContactRow>& rows, const VecX& depths,
                   double h, double baumgarte, double slop);
@@ -103,7 +109,8 @@ VecX velocityBias(const std::vector<ContactBody>& bodies, const std::vector<Cont
 /// and `b` are contactMatrix() and velocityBias() of the rows ordered as the m normals, then
 /// contact 0's k directions, contact 1's k directions, ...; the result has size m + m k + m with
 /// unknowns \f$(\lambda_n, \beta, \gamma)\f$ in that order. InvalidInput on sizes that do not
-/// fit (m is mu's size; A must be (m + m k) square and b of size m + m k), k < 3 or a negative \f$\mu\f$.
+/// fit (m is mu's size; A must be (m + m k) square and b of size m + m k), k < 3, a negative or
+/// non-finite \f$\mu\f$, or a non-finite entry of A or b.
 /// Handout: Lab 6, section 8.
 LcpProblem frictionPyramid(const MatX& A, const VecX& b, const VecX& mu, int k);
 ///@}

@@ -172,30 +172,37 @@ struct Contact {
 /// (\f$v^- \cdot \hat n < 0\f$), \f$v^+ = v^- + \frac{j}{m}\hat n\f$ with
 /// \f$j = -(1 + \epsilon)\, m\, v^- \cdot \hat n\f$; otherwise (grazing at \f$v^- \cdot \hat n = 0\f$
 /// included) \f$v^+ = v^-\f$ [m/s]. Every \f$\epsilon\f$ in [0, 1] is allowed, both ends included
-/// (0: a dead stop along n, 1: a perfect bounce). Handout: Lab 5, section 1.
+/// (0: a dead stop along n, 1: a perfect bounce). InvalidInput when m is not positive and finite,
+/// v_minus is not finite, n is not a finite unit vector (its length off 1 by more than 1e-9) or
+/// \f$\epsilon\f$ is outside [0, 1] or NaN. Handout: Lab 5, section 1.
 Vec3 particlePlaneResponse(double m, const Vec3& v_minus, const Vec3& n, double epsilon);
 
 /// The world inverse inertia \f$I^{-1} = R\, I_{body}^{-1} R^T\f$ with \f$R = R(q)\f$ (q normalised).
-/// Handout: Lab 5, section 2.
+/// InvalidInput when I_body_inv is not finite or q is zero or not finite. Handout: Lab 5, section 2.
 Mat3 inverseInertiaWorld(const Mat3& I_body_inv, const Quat& q);
 
 /// The relative velocity of the touching points, \f$\dot p_A - \dot p_B\f$ with
-/// \f$\dot p = v + \omega \times (p - x)\f$ [m/s]. Handout: Lab 5, section 2.
+/// \f$\dot p = v + \omega \times (p - x)\f$ [m/s]. InvalidInput when p is not finite.
+/// Handout: Lab 5, section 2.
 Vec3 relativeVelocity(const ContactBody& A, const ContactBody& B, const Vec3& p);
 
 /// The inverse effective mass along the unit direction d at p, the denominator of j:
 /// \f$K = m_A^{-1} + m_B^{-1} + d \cdot (I_A^{-1}(r_A \times d)) \times r_A + d \cdot (I_B^{-1}(r_B \times d)) \times r_B\f$
-/// [1/kg]. Handout: Lab 5, section 2.
+/// [1/kg]. InvalidInput when an inverse mass is negative or not finite, or d is not a finite unit
+/// vector (its length off 1 by more than 1e-9). Handout: Lab 5, section 2.
 double inverseEffectiveMass(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& d);
 
 /// The lecture's impulse magnitude \f$j = -(1 + \epsilon)\, v_{rel}^- / K\f$ with
 /// \f$v_{rel}^- = \hat n \cdot (\dot p_A - \dot p_B)\f$ now [N s]. (Negative when the points separate:
-/// the caller decides whether to apply it.) Handout: Lab 5, section 2.
+/// the caller decides whether to apply it.) InvalidInput when \f$\epsilon\f$ is outside [0, 1] or NaN
+/// (above 1 a bounce would gain energy), n is not a finite unit vector, or as relativeVelocity() and
+/// inverseEffectiveMass(). Handout: Lab 5, section 2.
 double impulseMagnitude(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double epsilon);
 
 /// Applies the impulse J at p to A and -J to B: \f$\Delta v_A = m_A^{-1} J\f$,
 /// \f$\Delta \omega_A = I_A^{-1}(r_A \times J)\f$, and the opposite for B (fixed bodies: zero
-/// inverses, no change). Handout: Lab 5, section 3.
+/// inverses, no change). InvalidInput, with neither body changed, when an inverse mass is negative
+/// or not finite, or p or J is not finite. Handout: Lab 5, section 3.
 void applyImpulse(ContactBody& A, ContactBody& B, const Vec3& p, const Vec3& J);
 
 /// Coulomb friction at p: the impulse in the tangent plane (normal n) that stops the sliding
@@ -203,7 +210,9 @@ void applyImpulse(ContactBody& A, ContactBody& B, const Vec3& p, const Vec3& J);
 /// and \f$K_t\f$ = inverseEffectiveMass() along \f$\hat t\f$, shortened to length `j_max` when
 /// longer (sliding; \f$j_{max} = \mu j\f$), kept when shorter (sticking). Exactly zero when not
 /// sliding (\f$v_t = 0\f$, so no direction \f$\hat t\f$) and when `j_max` = 0 (\f$\mu = 0\f$ or
-/// \f$j = 0\f$); `j_max` may be infinite (no bound). [N s] Handout: Lab 5, section 4.
+/// \f$j = 0\f$); `j_max` may be infinite (no bound). [N s] InvalidInput when n is not a finite unit
+/// vector or `j_max` is negative or NaN (+infinity is the only non-finite bound), or as
+/// relativeVelocity() and inverseEffectiveMass(). Handout: Lab 5, section 4.
 Vec3 frictionImpulse(const ContactBody& A, const ContactBody& B, const Vec3& p, const Vec3& n, double j_max);
 
 /// Sequential impulses (Gauss-Seidel, as Bullet and Box2D solve contacts): first applies the
@@ -219,7 +228,12 @@ Vec3 frictionImpulse(const ContactBody& A, const ContactBody& B, const Vec3& p, 
 /// \f$\Delta j\f$ along d changes the velocity along d by \f$K \Delta j\f$; normal and friction changes
 /// both count) or settings.iterations sweeps. Returns the sweeps made, the last (quiet) one
 /// included: no contacts at all take 1.
-/// Handout: Lab 5, section 5.
+/// InvalidInput, before any body or contact changes, when a body's inv_mass is negative or not
+/// finite, or a contact names a body outside [0, bodies.size()) (as a or b), has a normal n that is
+/// not a finite unit vector (length off 1 by more than 1e-9), a point p that is not finite,
+/// \f$\epsilon\f$ outside [0, 1] or NaN, \f$\mu\f$ negative or not finite, a v_rel_minus that is
+/// not finite, j negative or not finite, or a j_t that is not finite. The message names the contact
+/// (or body) and the field. Handout: Lab 5, section 5.
 int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings);
 
 /// Simultaneous impulses (Jacobi): each sweep computes every point's correction from the same
@@ -234,14 +248,16 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
 /// clamped away changes nothing) or settings.iterations sweeps; every sweep's corrections,
 /// the last one's included, reach the bodies, so the momentum each body gained is exactly the
 /// accumulated impulses at its points. Returns the sweeps, the last one included: no contacts at
-/// all take 1.
+/// all take 1. InvalidInput on the same input as solveSequential(), before anything changes.
 /// Handout: Lab 5, section 6.
 int solveSimultaneous(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings);
 
 /// The penalty force on A at a touching point (lecture 001): a spring of stiffness k on the depth
 /// and a damper d on the normal velocity, \f$F = \max(0,\ k\, depth - d\, v_{rel})\, \hat n\f$ (never pulling)
 /// [N], for depth >= 0 and d >= 0: at depth exactly 0 (just touching) the damper alone pushes a point
-/// that approaches, and with d = 0 the spring alone acts. Handout: Lab 5, section 7.
+/// that approaches, and with d = 0 the spring alone acts. InvalidInput when depth or d is negative
+/// or not finite, v_rel is not finite, n is not a finite unit vector, or k is not positive and
+/// finite. Handout: Lab 5, section 7.
 Vec3 penaltyForce(double depth, double v_rel, const Vec3& n, double k, double d);
 ///@}
 
