@@ -196,45 +196,59 @@ void checkImpulseBalance(const ContactBody& box0, const ContactBody& box, double
 
 }  // namespace
 
+namespace {
+
+// One sweep of `method` on one approaching point against a hand oracle: the warm start (when
+// `warm`), the correction towards -epsilon v_rel-, then friction clamped to mu times the j just
+// found, with mu set so that the bound is `fraction` of the impulse that would stop the sliding
+// (below 1 sliding, above sticking). One point is the same for Gauss-Seidel and Jacobi.
+void checkOneSweepOnOnePoint(ResponseMethod method, double fraction, bool warm) {
+  const RandomPair s = approachingPair();
+  const double epsilon = uniform(0.1, 1.0);
+  Contact c = oneContact(s, epsilon, 0.0);
+  // Warm: impulses carried over from the last step, a part of the answer (so friction clamped
+  // with them instead of the j just found would be bounded too tightly)
+  ContactBody A = s.A, B = s.B;
+  const double K = oracleK(A, B, s.p, s.n);
+  const double j0 = warm ? uniform(0.2, 0.8) * -(1.0 + epsilon) * c.v_rel_minus / K : 0.0;
+  const Vec3 j_t0 = uniform(0.05, 0.2) * j0 * s.n.cross(randomVec3(1.0)).normalized();
+  // The oracle: the warm start, then the target -epsilon v_rel- reached from there
+  oracleApply(A, B, s.p, j0 * s.n + j_t0);
+  const double v_rel = s.n.dot(oracleRelativeVelocity(A, B, s.p));
+  const double j = std::max(0.0, j0 + (-epsilon * c.v_rel_minus - v_rel) / K);
+  // Friction sees this point's normal correction
+  oracleApply(A, B, s.p, (j - j0) * s.n);
+  const Vec3 j_t_free = j_t0 + oracleFriction(A, B, s.p, s.n, std::numeric_limits<double>::infinity());
+  c.mu = fraction * j_t_free.norm() / j;
+  const Vec3 j_t = oracleClamp(j_t_free, c.mu * j);
+  oracleApply(A, B, s.p, j_t - j_t0);
+  // The solver, allowed one sweep
+  c.j = j0;
+  c.j_t = j_t0;
+  std::vector<ContactBody> bodies = {s.A, s.B};
+  std::vector<Contact> contacts = {c};
+  Settings settings;
+  settings.method = method;
+  settings.iterations = 1;
+  INFO(responseMethodName(method) << ", " << (warm ? "warm" : "cold") << ", fraction of the stopping impulse "
+                                  << fraction << ", v_rel " << c.v_rel_minus << ", j " << j);
+  const int sweeps = method == ResponseMethod::Sequential ? solveSequential(bodies, contacts, settings)
+                                                           : solveSimultaneous(bodies, contacts, settings);
+  CHECK(sweeps == 1);
+  // The same formulas evaluated in another order: round-off relative to the impulses
+  // (~10 N s) and the speeds (~10 m/s).
+  CHECK(contacts[0].j == Approx(j).epsilon(1e-10));
+  CHECK((contacts[0].j_t - j_t).norm() <= 1e-10 * j);
+  CHECK(velocityDistance(bodies[0], A) <= 1e-10 * (1.0 + j));
+  CHECK(velocityDistance(bodies[1], B) <= 1e-10 * (1.0 + j));
+}
+
+}  // namespace
+
 TEST_CASE("sequential impulses: one sweep on one point is its warm start, its correction, then friction clamped to mu j", "[lab05][pts=2]") {
   // Sliding (the bound is part of the stopping impulse) and sticking (it is more), cold and warm
   for (const double fraction : {uniform(0.2, 0.8), uniform(1.2, 3.0)}) {
-    for (const bool warm : {false, true}) {
-      const RandomPair s = approachingPair();
-      const double epsilon = uniform(0.1, 1.0);
-      Contact c = oneContact(s, epsilon, 0.0);
-      // Warm: impulses carried over from the last step, a part of the answer (so friction clamped
-      // with them instead of the j just found would be bounded too tightly)
-      ContactBody A = s.A, B = s.B;
-      const double K = oracleK(A, B, s.p, s.n);
-      const double j0 = warm ? uniform(0.2, 0.8) * -(1.0 + epsilon) * c.v_rel_minus / K : 0.0;
-      const Vec3 j_t0 = uniform(0.05, 0.2) * j0 * s.n.cross(randomVec3(1.0)).normalized();
-      // The oracle: the warm start, then the target -epsilon v_rel- reached from there
-      oracleApply(A, B, s.p, j0 * s.n + j_t0);
-      const double v_rel = s.n.dot(oracleRelativeVelocity(A, B, s.p));
-      const double j = std::max(0.0, j0 + (-epsilon * c.v_rel_minus - v_rel) / K);
-      oracleApply(A, B, s.p, (j - j0) * s.n);
-      const Vec3 j_t_free = j_t0 + oracleFriction(A, B, s.p, s.n, std::numeric_limits<double>::infinity());
-      c.mu = fraction * j_t_free.norm() / j;
-      const Vec3 j_t = oracleClamp(j_t_free, c.mu * j);
-      oracleApply(A, B, s.p, j_t - j_t0);
-      // The solver, allowed one sweep
-      c.j = j0;
-      c.j_t = j_t0;
-      std::vector<ContactBody> bodies = {s.A, s.B};
-      std::vector<Contact> contacts = {c};
-      Settings settings;
-      settings.iterations = 1;
-      INFO((warm ? "warm" : "cold") << ", fraction of the stopping impulse " << fraction << ", v_rel " << c.v_rel_minus
-                                    << ", j " << j);
-      CHECK(solveSequential(bodies, contacts, settings) == 1);
-      // The same formulas evaluated in another order: round-off relative to the impulses
-      // (~10 N s) and the speeds (~10 m/s).
-      CHECK(contacts[0].j == Approx(j).epsilon(1e-10));
-      CHECK((contacts[0].j_t - j_t).norm() <= 1e-10 * j);
-      CHECK(velocityDistance(bodies[0], A) <= 1e-10 * (1.0 + j));
-      CHECK(velocityDistance(bodies[1], B) <= 1e-10 * (1.0 + j));
-    }
+    for (const bool warm : {false, true}) checkOneSweepOnOnePoint(ResponseMethod::Sequential, fraction, warm);
   }
 }
 
@@ -295,42 +309,9 @@ TEST_CASE("sequential impulses: the warm start and the accumulated j, j_t accoun
 }
 
 TEST_CASE("simultaneous impulses: one sweep on one point is its warm start, its correction, then its friction", "[lab05][pts=2]") {
-  // Sliding and sticking, as in the sequential test
+  // Sliding and sticking, cold and warm, as in the sequential test
   for (const double fraction : {uniform(0.2, 0.8), uniform(1.2, 3.0)}) {
-    const RandomPair s = approachingPair();
-    const double epsilon = uniform(0.1, 1.0);
-    Contact c = oneContact(s, epsilon, 0.0);
-    // Impulses carried over from the last step, a part of the answer
-    ContactBody A = s.A, B = s.B;
-    const double K = oracleK(A, B, s.p, s.n);
-    const double j0 = uniform(0.2, 0.8) * -(1.0 + epsilon) * c.v_rel_minus / K;
-    const Vec3 j_t0 = uniform(0.05, 0.2) * j0 * s.n.cross(randomVec3(1.0)).normalized();
-    // The oracle: apply the warm start, then aim at -epsilon v_rel_minus from there
-    oracleApply(A, B, s.p, j0 * s.n + j_t0);
-    const double v_rel = s.n.dot(oracleRelativeVelocity(A, B, s.p));
-    const double j = std::max(0.0, j0 + (-epsilon * c.v_rel_minus - v_rel) / K);
-    // Friction sees this point's normal correction
-    oracleApply(A, B, s.p, (j - j0) * s.n);
-    const Vec3 j_t_free = j_t0 + oracleFriction(A, B, s.p, s.n, std::numeric_limits<double>::infinity());
-    c.mu = fraction * j_t_free.norm() / j;
-    const Vec3 j_t = oracleClamp(j_t_free, c.mu * j);
-    oracleApply(A, B, s.p, j_t - j_t0);
-    // The solver, allowed one sweep
-    c.j = j0;
-    c.j_t = j_t0;
-    std::vector<ContactBody> bodies = {s.A, s.B};
-    std::vector<Contact> contacts = {c};
-    Settings settings;
-    settings.method = ResponseMethod::Simultaneous;
-    settings.iterations = 1;
-    INFO("fraction of the stopping impulse " << fraction << ", v_rel " << c.v_rel_minus << ", j " << j);
-    CHECK(solveSimultaneous(bodies, contacts, settings) == 1);
-    // The same formulas evaluated in another order: round-off relative to the impulses
-    // (~10 N s) and the speeds (~10 m/s).
-    CHECK(contacts[0].j == Approx(j).epsilon(1e-10));
-    CHECK((contacts[0].j_t - j_t).norm() <= 1e-10 * j);
-    CHECK(velocityDistance(bodies[0], A) <= 1e-10 * (1.0 + j));
-    CHECK(velocityDistance(bodies[1], B) <= 1e-10 * (1.0 + j));
+    for (const bool warm : {false, true}) checkOneSweepOnOnePoint(ResponseMethod::Simultaneous, fraction, warm);
   }
 }
 
