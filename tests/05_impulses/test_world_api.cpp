@@ -1,10 +1,13 @@
-// Framework tests for Lab 5's World API: states from velocities, per-pair depths, body indices
-// and the pipeline's classification before gravity. They grade nothing (the code lives in
+// Framework tests for Lab 5's World API: states from velocities, per-pair depths, body indices,
+// the pipeline's classification before gravity, and the contact suite's selection and report. They grade nothing (the code lives in
 // common/), so they carry [common].
 #include <cmath>
+#include <iostream>
 
+#include "physlab/contact_suite.hpp"
 #include "physlab/error.hpp"
 #include "physlab/rigid.hpp"
+#include "physlab/suite_report.hpp"
 #include "physlab/world.hpp"
 #include "support.hpp"
 
@@ -84,4 +87,15 @@ TEST_CASE("world api: a body at rest on the ground is resting, not colliding, at
     // It stays: the resting point takes gravity's impulse, no bounce
     CHECK(std::abs(world.velocity(1).z()) <= 1e-12);
   }
+}
+
+TEST_CASE("contact suite: scenes picked by name prefix, and a report refuses a missing engine", "[common]") {
+  const auto all = contactSuite();
+  REQUIRE(all.size() == 13);
+  CHECK(contactSuite({"stack", "dominoes"}).size() == 2);
+  CHECK(contactSuite({"flat drop"}).size() == 2);  // "slow flat drop" does not start with it
+  CHECK(contactSuite({"no such scene"}).empty());
+  CHECK_THROWS_WITH(contactSuiteReport({}, "heading", "/tmp/unused", std::cout), Contains("no engine"));
+  CHECK_THROWS_WITH(contactSuiteReport({SuiteColumn{"name", "label", "points", nullptr}}, "heading", "/tmp/unused", std::cout),
+                    Contains("'label' has no make function"));
 }

@@ -30,7 +30,8 @@ struct SuiteReport {
 
 /// Runs every scene of contactSuite() in every column's engine (an engine that throws fails that
 /// scene's measures and the reason is printed), prints the table to `out` under `heading`, and
-/// writes `stem`.md (the table) and the chart `stem`.png and `stem`.svg.
+/// writes `stem`.md (the table) and the chart `stem`.png and `stem`.svg. InvalidInput when there
+/// is no column or a column has no make function.
 SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const std::string& heading,
                                const std::string& stem, std::ostream& out);
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "physlab/demo.hpp"
+#include "physlab/error.hpp"
 #include "physlab/plot.hpp"
 #include "physlab/suite_report.hpp"
 
@@ -38,6 +39,10 @@ double drawnScore(const Measure& m) {
 
 SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const std::string& heading,
                                const std::string& stem, std::ostream& out) {
+  if (columns.empty()) throw InvalidInput("contact suite report: no engine to run");
+  for (const SuiteColumn& column : columns) {
+    if (!column.make) throw InvalidInput("contact suite report: engine '" + column.label + "' has no make function");
+  }
   // results[c][s]: column c's measures of scene s, each column on a fresh suite
   std::vector<std::vector<std::vector<Measure>>> results(columns.size());
   std::vector<std::string> notes;
