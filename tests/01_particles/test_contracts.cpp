@@ -79,13 +79,13 @@ VecX massesWithPin(Index n, Index pinned) {
 
 }  // namespace
 
-TEST_CASE("one step: explicit Euler is X + h f(X)", "[lab01][pts=1]") {
+TEST_CASE("one step: explicit Euler is X + h f(X)", "[lab01][pts=1][sec=3]") {
   const VecX X0 = randomCoupledState();
   const double h = uniform(0.05, 0.2);
   checkOneStep(Method::ExplicitEuler, X0, h, X0 + h * Coupled::f(X0));
 }
 
-TEST_CASE("one step: symplectic Euler kicks with the old positions, then drifts with the new velocities", "[lab01][pts=1]") {
+TEST_CASE("one step: symplectic Euler kicks with the old positions, then drifts with the new velocities", "[lab01][pts=1][sec=3]") {
   const VecX X0 = randomCoupledState();
   const double h = uniform(0.05, 0.2);
   VecX expected = X0;
@@ -94,20 +94,20 @@ TEST_CASE("one step: symplectic Euler kicks with the old positions, then drifts 
   checkOneStep(Method::SymplecticEuler, X0, h, expected);
 }
 
-TEST_CASE("one step: midpoint uses the slope half a step ahead", "[lab01][pts=1]") {
+TEST_CASE("one step: midpoint uses the slope half a step ahead", "[lab01][pts=1][sec=3]") {
   const VecX X0 = randomCoupledState();
   const double h = uniform(0.05, 0.2);
   checkOneStep(Method::Midpoint, X0, h, X0 + h * Coupled::f(X0 + 0.5 * h * Coupled::f(X0)));
 }
 
-TEST_CASE("one step: trapezoid averages the slopes at both ends of an Euler step", "[lab01][pts=1]") {
+TEST_CASE("one step: trapezoid averages the slopes at both ends of an Euler step", "[lab01][pts=1][sec=3]") {
   const VecX X0 = randomCoupledState();
   const double h = uniform(0.05, 0.2);
   const VecX k1 = Coupled::f(X0), k2 = Coupled::f(X0 + h * k1);
   checkOneStep(Method::Trapezoid, X0, h, X0 + 0.5 * h * (k1 + k2));
 }
 
-TEST_CASE("one step: RK4 combines its four stages with weights 1/6, 1/3, 1/3, 1/6", "[lab01][pts=1]") {
+TEST_CASE("one step: RK4 combines its four stages with weights 1/6, 1/3, 1/3, 1/6", "[lab01][pts=1][sec=3]") {
   const VecX X0 = randomCoupledState();
   const double h = uniform(0.05, 0.2);
   const VecX k1 = Coupled::f(X0);
@@ -117,7 +117,7 @@ TEST_CASE("one step: RK4 combines its four stages with weights 1/6, 1/3, 1/3, 1/
   checkOneStep(Method::RK4, X0, h, X0 + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4));
 }
 
-TEST_CASE("one step: Verlet kicks half, drifts, and kicks half with the new forces", "[lab01][pts=1]") {
+TEST_CASE("one step: Verlet kicks half, drifts, and kicks half with the new forces", "[lab01][pts=1][sec=3]") {
   const VecX X0 = randomCoupledState();
   const double h = uniform(0.05, 0.2);
   VecX expected = X0;
@@ -127,7 +127,7 @@ TEST_CASE("one step: Verlet kicks half, drifts, and kicks half with the new forc
   checkOneStep(Method::Verlet, X0, h, expected);
 }
 
-TEST_CASE("one step: implicit Euler solves X1 = X0 + h f(X1) on a nonlinear system", "[lab01][pts=1]") {
+TEST_CASE("one step: implicit Euler solves X1 = X0 + h f(X1) on a nonlinear system", "[lab01][pts=1][sec=3]") {
   const Coupled sys;
   const VecX X0 = randomCoupledState();
   const double h = uniform(0.1, 0.3);
@@ -141,7 +141,7 @@ TEST_CASE("one step: implicit Euler solves X1 = X0 + h f(X1) on a nonlinear syst
   CHECK((X - X0).norm() > 1e-3);  // and it did step
 }
 
-TEST_CASE("implicit Euler: throws NumericalFailure when Newton runs out of iterations", "[lab01][pts=1]") {
+TEST_CASE("implicit Euler: throws NumericalFailure when Newton runs out of iterations", "[lab01][pts=1][sec=3]") {
   const Coupled sys;
   const VecX X0 = randomCoupledState();
   VecX X = X0;
@@ -154,7 +154,7 @@ TEST_CASE("implicit Euler: throws NumericalFailure when Newton runs out of itera
   CHECK_THROWS_AS(starved.step(sys, X, 0.2), NumericalFailure);
 }
 
-TEST_CASE("implicit Euler: Newton may converge on its last allowed iteration, the first one included", "[lab01][pts=1]") {
+TEST_CASE("implicit Euler: Newton may converge on its last allowed iteration, the first one included", "[lab01][pts=1][sec=3]") {
   // A fixed linear oscillator, w = 2, h = 0.1: from the Euler guess the first Newton iteration
   // lands on the solution (I - hJ)^-1 X0 and the second one's update is round-off, below the
   // tolerance. So Newton needs exactly two iterations: max_iterations = 2 must succeed.
@@ -179,7 +179,7 @@ TEST_CASE("implicit Euler: Newton may converge on its last allowed iteration, th
   CHECK(Y == Y0);
 }
 
-TEST_CASE("integrators: one step costs the force evaluations its method documents", "[lab01][pts=1]") {
+TEST_CASE("integrators: one step costs the force evaluations its method documents", "[lab01][pts=1][sec=3]") {
   // Method's documentation: explicit and symplectic Euler 1, midpoint, trapezoid and Verlet 2,
   // RK4 4. The drift reads the position rate (positionRateView()), which is no force evaluation.
   const Coupled sys;
@@ -199,7 +199,7 @@ TEST_CASE("integrators: one step costs the force evaluations its method document
   }
 }
 
-TEST_CASE("particles: the velocity rate overwrites whatever its output buffer held", "[lab01][pts=1]") {
+TEST_CASE("particles: the velocity rate overwrites whatever its output buffer held", "[lab01][pts=1][sec=2]") {
   const Index n = 4;
   ParticleSystem sys(massesWithPin(n, 2));
   auto force = std::make_shared<ConstantForce>(n);
@@ -215,7 +215,7 @@ TEST_CASE("particles: the velocity rate overwrites whatever its output buffer he
   }
 }
 
-TEST_CASE("particles: a pinned particle feels no acceleration under gravity and drag", "[lab01][pts=1]") {
+TEST_CASE("particles: a pinned particle feels no acceleration under gravity and drag", "[lab01][pts=1][sec=2]") {
   const Index n = 3;
   const VecX m = massesWithPin(n, 1);
   ParticleSystem sys(m);
@@ -234,7 +234,7 @@ TEST_CASE("particles: a pinned particle feels no acceleration under gravity and 
   }
 }
 
-TEST_CASE("diagnostics: pinned particles are left out of the energies and the momenta", "[lab01][pts=1]") {
+TEST_CASE("diagnostics: pinned particles are left out of the energies and the momenta", "[lab01][pts=1][sec=4]") {
   const Index n = 4;
   const VecX m = massesWithPin(n, 3);
   ParticleSystem sys(m);
@@ -258,7 +258,7 @@ TEST_CASE("diagnostics: pinned particles are left out of the energies and the mo
   CHECK((angularMomentum(sys, X) - L).norm() < 1e-13 * (1.0 + L.norm()));
 }
 
-TEST_CASE("forces: every force adds to a buffer that already holds other forces", "[lab01][pts=1]") {
+TEST_CASE("forces: every force adds to a buffer that already holds other forces", "[lab01][pts=1][sec=1]") {
   const Index n = 4;
   VecX m(n);
   for (Index i = 0; i < n; ++i) m[i] = uniform(0.5, 2.0);
@@ -284,7 +284,7 @@ TEST_CASE("forces: every force adds to a buffer that already holds other forces"
   }
 }
 
-TEST_CASE("forces: Jacobians add to matrices that already hold other forces' Jacobians", "[lab01][pts=1]") {
+TEST_CASE("forces: Jacobians add to matrices that already hold other forces' Jacobians", "[lab01][pts=1][sec=1]") {
   const Index n = 3;
   const VecX m = VecX::Ones(n);
   Mat3X x(3, n);
@@ -315,7 +315,7 @@ TEST_CASE("forces: Jacobians add to matrices that already hold other forces' Jac
   CHECK((dF_dv - sum_v).norm() < 1e-12 * sum_v.norm());
 }
 
-TEST_CASE("forces: N-body potential is softened like its force", "[lab01][pts=1]") {
+TEST_CASE("forces: N-body potential is softened like its force", "[lab01][pts=1][sec=1]") {
   const Index n = 4;
   VecX m(n);
   for (Index i = 0; i < n; ++i) m[i] = uniform(0.5, 3.0);

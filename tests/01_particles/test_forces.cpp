@@ -62,7 +62,7 @@ double relative(const Mat3X& a, const Mat3X& b) { return (a - b).norm() / std::m
 
 }  // namespace
 
-TEST_CASE("forces: uniform gravity is m g, nothing on a pinned particle, and minus the gradient of its potential", "[lab01][pts=1]") {
+TEST_CASE("forces: uniform gravity is m g, nothing on a pinned particle, and minus the gradient of its potential", "[lab01][pts=1][sec=1]") {
   Cloud c = randomCloud(5, 2.0, 0.0);
   c.m[3] = std::numeric_limits<double>::infinity();  // pinned: m g would be infinite (or NaN)
   const Vec3 g = randomVec3(10.0);
@@ -74,7 +74,7 @@ TEST_CASE("forces: uniform gravity is m g, nothing on a pinned particle, and min
   CHECK(relative(minusGradient(gravity, c), expected) < 1e-8);
 }
 
-TEST_CASE("forces: N-body gravity matches Newton's law and minus the gradient of its potential", "[lab01][pts=2]") {
+TEST_CASE("forces: N-body gravity matches Newton's law and minus the gradient of its potential", "[lab01][pts=2][sec=1]") {
   const Cloud c = randomCloud(6, 2.0, 0.3);
   const double G = uniform(0.5, 2.0), soft = uniform(0.0, 0.1);
   const NBodyGravity gravity(G, soft);
@@ -93,7 +93,7 @@ TEST_CASE("forces: N-body gravity matches Newton's law and minus the gradient of
   CHECK(F.rowwise().sum().norm() < 1e-13 * F.colwise().norm().maxCoeff() * 6);
 }
 
-TEST_CASE("forces: N-body gravity at both ends of its softening: eps = 0 is Newton's law, coincident softened particles feel no pull", "[lab01][pts=1]") {
+TEST_CASE("forces: N-body gravity at both ends of its softening: eps = 0 is Newton's law, coincident softened particles feel no pull", "[lab01][pts=1][sec=1]") {
   // Fixed masses and positions. Softened (eps = 0.5), particles 0 and 1 coincide: their pair
   // term G m m d / (|d|^2 + eps^2)^(3/2) is 0 and their potential -G m m / eps is finite.
   // Unsoftened (eps = 0, the least allowed), particle 1 is moved off particle 0.
@@ -124,7 +124,7 @@ TEST_CASE("forces: N-body gravity at both ends of its softening: eps = 0 is Newt
   }
 }
 
-TEST_CASE("forces: damped spring by hand: stretched pulls, compressed pushes, damping resists approach and separation", "[lab01][pts=1]") {
+TEST_CASE("forces: damped spring by hand: stretched pulls, compressed pushes, damping resists approach and separation", "[lab01][pts=1][sec=1]") {
   // A spring along x: x_a = 0, x_b = (2, 0, 0), so l = (-2, 0, 0), |l| = 2, u = (-1, 0, 0);
   // ks = 10, kd = 0.5. f_a = -[ks (|l| - r) + kd l_dot.u] u = (ks (2 - r) + kd l_dot.u, 0, 0).
   // Every number is a short binary fraction: the arithmetic is exact, 1e-14 is only a guard.
@@ -161,7 +161,7 @@ TEST_CASE("forces: damped spring by hand: stretched pulls, compressed pushes, da
   }
 }
 
-TEST_CASE("forces: viscous drag is -d v and stores no energy", "[lab01][pts=1]") {
+TEST_CASE("forces: viscous drag is -d v and stores no energy", "[lab01][pts=1][sec=1]") {
   const Cloud c = randomCloud(4, 1.0, 0.0);
   const double d = uniform(0.1, 3.0);
   const ViscousDrag drag(d);
@@ -173,7 +173,7 @@ TEST_CASE("forces: viscous drag is -d v and stores no energy", "[lab01][pts=1]")
   CHECK(dF_dx.norm() == 0.0);
 }
 
-TEST_CASE("forces: damped spring follows the lecture's formula and its potential", "[lab01][pts=2]") {
+TEST_CASE("forces: damped spring follows the lecture's formula and its potential", "[lab01][pts=2][sec=1]") {
   const Cloud c = randomCloud(3, 1.0, 0.2);
   const Vec3 l = c.x.col(2) - c.x.col(0), l_dot = c.v.col(2) - c.v.col(0);
   // Stretched or compressed by at least 20 %: near |l| = rest the force vanishes while the
@@ -193,7 +193,7 @@ TEST_CASE("forces: damped spring follows the lecture's formula and its potential
   CHECK(undamped.potential(c.view()) == Approx(0.5 * ks * std::pow(l.norm() - rest, 2)).epsilon(1e-12));
 }
 
-TEST_CASE("forces: damped spring Jacobians match central differences", "[lab01][pts=2]") {
+TEST_CASE("forces: damped spring Jacobians match central differences", "[lab01][pts=2][sec=1]") {
   Cloud c = randomCloud(3, 1.0, 0.2);
   const DampedSpring spring(0, 2, uniform(0.1, 1.0), uniform(1.0, 100.0), uniform(0.1, 5.0));
   MatX dF_dx = MatX::Zero(9, 9), dF_dv = MatX::Zero(9, 9);
@@ -218,7 +218,7 @@ TEST_CASE("forces: damped spring Jacobians match central differences", "[lab01][
   CHECK((dF_dv - fd_v).norm() < 1e-6 * fd_v.norm());
 }
 
-TEST_CASE("forces: Lennard-Jones matches its formula and minus the gradient of its potential", "[lab01][pts=2]") {
+TEST_CASE("forces: Lennard-Jones matches its formula and minus the gradient of its potential", "[lab01][pts=2][sec=1]") {
   const double sigma = uniform(0.5, 1.0), eps_lj = uniform(0.5, 2.0);
   const Cloud c = randomCloud(5, 1.5, 0.9 * sigma);
   const LennardJones lj(eps_lj, sigma);

@@ -97,7 +97,7 @@ double stabilityBoundary(Method method) {
 
 }  // namespace
 
-TEST_CASE("oscillator: explicit Euler's energy grows by exactly 1+(h omega)^2 per step", "[lab01][pts=2]") {
+TEST_CASE("oscillator: explicit Euler's energy grows by exactly 1+(h omega)^2 per step", "[lab01][pts=2][sec=3]") {
   const double hw = uniform(0.01, 0.5);
   for (double ratio : energyRatios(Method::ExplicitEuler, hw, 50)) {
     // Exact algebra: only round-off (1e-15 per step) separates the ratio from 1+(h omega)^2.
@@ -105,7 +105,7 @@ TEST_CASE("oscillator: explicit Euler's energy grows by exactly 1+(h omega)^2 pe
   }
 }
 
-TEST_CASE("oscillator: implicit Euler's energy decays by exactly 1/(1+(h omega)^2) per step", "[lab01][pts=2]") {
+TEST_CASE("oscillator: implicit Euler's energy decays by exactly 1/(1+(h omega)^2) per step", "[lab01][pts=2][sec=3]") {
   const double hw = uniform(0.01, 0.5);
   for (double ratio : energyRatios(Method::ImplicitEuler, hw, 50)) {
     // Newton converges to 1e-12 relative on this linear system, so the ratio is exact to ~1e-11.
@@ -113,7 +113,7 @@ TEST_CASE("oscillator: implicit Euler's energy decays by exactly 1/(1+(h omega)^
   }
 }
 
-TEST_CASE("oscillator: symplectic Euler keeps the energy bounded over 10^4 steps", "[lab01][pts=2]") {
+TEST_CASE("oscillator: symplectic Euler keeps the energy bounded over 10^4 steps", "[lab01][pts=2][sec=3]") {
   const double hw = uniform(0.05, 0.5);
   const double error = maxEnergyError(Method::SymplecticEuler, hw, 10000);
   INFO("h omega = " << hw << ", largest relative energy error " << error);
@@ -124,7 +124,7 @@ TEST_CASE("oscillator: symplectic Euler keeps the energy bounded over 10^4 steps
   CHECK(error > 0.1 * hw);  // the known O(h omega) oscillation is there: the method is first order
 }
 
-TEST_CASE("oscillator: Verlet keeps the energy bounded over 10^4 steps", "[lab01][pts=2]") {
+TEST_CASE("oscillator: Verlet keeps the energy bounded over 10^4 steps", "[lab01][pts=2][sec=3]") {
   const double hw = uniform(0.05, 0.5);
   const double error = maxEnergyError(Method::Verlet, hw, 10000);
   INFO("h omega = " << hw << ", largest relative energy error " << error);
@@ -133,45 +133,45 @@ TEST_CASE("oscillator: Verlet keeps the energy bounded over 10^4 steps", "[lab01
   CHECK(error > 0.05 * hw * hw);  // second order: the O((h omega)^2) oscillation is there
 }
 
-TEST_CASE("convergence: explicit Euler is first order", "[lab01][pts=1]") {
+TEST_CASE("convergence: explicit Euler is first order", "[lab01][pts=1][sec=3]") {
   checkOrder(Method::ExplicitEuler, 1e-3);
 }
-TEST_CASE("convergence: symplectic Euler is first order", "[lab01][pts=1]") {
+TEST_CASE("convergence: symplectic Euler is first order", "[lab01][pts=1][sec=3]") {
   checkOrder(Method::SymplecticEuler, 1e-3);
 }
-TEST_CASE("convergence: midpoint is second order", "[lab01][pts=1]") {
+TEST_CASE("convergence: midpoint is second order", "[lab01][pts=1][sec=3]") {
   checkOrder(Method::Midpoint, 5e-3);
 }
-TEST_CASE("convergence: trapezoid is second order", "[lab01][pts=1]") {
+TEST_CASE("convergence: trapezoid is second order", "[lab01][pts=1][sec=3]") {
   checkOrder(Method::Trapezoid, 5e-3);
 }
-TEST_CASE("convergence: RK4 is fourth order", "[lab01][pts=1]") { checkOrder(Method::RK4, 2e-2); }
-TEST_CASE("convergence: Verlet is second order", "[lab01][pts=1]") {
+TEST_CASE("convergence: RK4 is fourth order", "[lab01][pts=1][sec=3]") { checkOrder(Method::RK4, 2e-2); }
+TEST_CASE("convergence: Verlet is second order", "[lab01][pts=1][sec=3]") {
   checkOrder(Method::Verlet, 5e-3);
 }
-TEST_CASE("convergence: implicit Euler is first order", "[lab01][pts=1]") {
+TEST_CASE("convergence: implicit Euler is first order", "[lab01][pts=1][sec=3]") {
   checkOrder(Method::ImplicitEuler, 1e-3);
 }
 
-TEST_CASE("stability: explicit Euler is unstable for every step", "[lab01][pts=1]") {
+TEST_CASE("stability: explicit Euler is unstable for every step", "[lab01][pts=1][sec=3]") {
   // Its step map has spectral radius sqrt(1+(h omega)^2) > 1 for all h > 0.
   CHECK(stabilityBoundary(Method::ExplicitEuler) == 0.0);
 }
 
-TEST_CASE("stability: symplectic Euler is stable up to h omega = 2", "[lab01][pts=1]") {
+TEST_CASE("stability: symplectic Euler is stable up to h omega = 2", "[lab01][pts=1][sec=3]") {
   // The bisection resolves 1e-9; the boundary is exact, so 1e-6 only absorbs round-off.
   CHECK(stabilityBoundary(Method::SymplecticEuler) == Approx(2.0).margin(1e-6));
 }
 
-TEST_CASE("stability: Verlet is stable up to h omega = 2", "[lab01][pts=1]") {
+TEST_CASE("stability: Verlet is stable up to h omega = 2", "[lab01][pts=1][sec=3]") {
   CHECK(stabilityBoundary(Method::Verlet) == Approx(2.0).margin(1e-6));
 }
 
-TEST_CASE("stability: RK4 is stable up to h omega = 2 sqrt 2", "[lab01][pts=1]") {
+TEST_CASE("stability: RK4 is stable up to h omega = 2 sqrt 2", "[lab01][pts=1][sec=3]") {
   CHECK(stabilityBoundary(Method::RK4) == Approx(2.0 * std::sqrt(2.0)).margin(1e-6));
 }
 
-TEST_CASE("stability: implicit Euler is stable for every step", "[lab01][pts=1]") {
+TEST_CASE("stability: implicit Euler is stable for every step", "[lab01][pts=1][sec=3]") {
   CHECK(stabilityBoundary(Method::ImplicitEuler) == std::numeric_limits<double>::infinity());
 }
 
@@ -198,7 +198,7 @@ std::pair<double, double> keplerEnergyError(Method method, double h, int orbits)
 
 }  // namespace
 
-TEST_CASE("Kepler: Verlet's energy error stays bounded over 1000 orbits", "[lab01][pts=2]") {
+TEST_CASE("Kepler: Verlet's energy error stays bounded over 1000 orbits", "[lab01][pts=2][sec=3]") {
   const auto [first, last] = keplerEnergyError(Method::Verlet, 0.05, 1000);
   INFO("max |dH| over the first 10 orbits " << first << ", over the last 10 " << last);
   // A symplectic method's error oscillates with the orbit: the last orbits' peak stays within
@@ -207,7 +207,7 @@ TEST_CASE("Kepler: Verlet's energy error stays bounded over 1000 orbits", "[lab0
   CHECK(first < 0.05);  // and it is small: O(h^2) at perihelion, where the orbit is fastest
 }
 
-TEST_CASE("Kepler: RK4's energy error grows over 1000 orbits", "[lab01][pts=2]") {
+TEST_CASE("Kepler: RK4's energy error grows over 1000 orbits", "[lab01][pts=2][sec=3]") {
   const auto [first, last] = keplerEnergyError(Method::RK4, 0.05, 1000);
   INFO("max |dH| over the first 10 orbits " << first << ", over the last 10 " << last);
   // RK4 is not symplectic: its energy error accumulates orbit after orbit, about linearly, so

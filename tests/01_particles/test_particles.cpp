@@ -32,7 +32,7 @@ VecX randomMasses(Index n) {
 
 }  // namespace
 
-TEST_CASE("particles: the derivative is [v, F/m] with every force summed", "[lab01][pts=2]") {
+TEST_CASE("particles: the derivative is [v, F/m] with every force summed", "[lab01][pts=2][sec=2]") {
   const Index n = 4;
   ParticleSystem sys(randomMasses(n));
   auto f1 = std::make_shared<TestForce>(n);
@@ -51,7 +51,7 @@ TEST_CASE("particles: the derivative is [v, F/m] with every force summed", "[lab
   CHECK((velocities(dX) - a).norm() < 1e-13 * a.norm());
 }
 
-TEST_CASE("particles: a pinned particle (infinite mass) gets no acceleration", "[lab01][pts=1]") {
+TEST_CASE("particles: a pinned particle (infinite mass) gets no acceleration", "[lab01][pts=1][sec=2]") {
   VecX m = randomMasses(3);
   m[1] = std::numeric_limits<double>::infinity();
   ParticleSystem sys(m);
@@ -64,7 +64,7 @@ TEST_CASE("particles: a pinned particle (infinite mass) gets no acceleration", "
   CHECK(velocities(dX).col(0).isApprox(force->expected(x).col(0) / m[0], 1e-13));
 }
 
-TEST_CASE("N-body: total momentum is conserved to round-off", "[lab01][pts=2]") {
+TEST_CASE("N-body: total momentum is conserved to round-off", "[lab01][pts=2][sec=1]") {
   const Index n = 8;
   const VecX m = randomMasses(n);
   const OracleParticles sys(m, {std::make_shared<NBodyGravity>(1.0, 0.05)});
@@ -78,7 +78,7 @@ TEST_CASE("N-body: total momentum is conserved to round-off", "[lab01][pts=2]") 
   CHECK((sys.momentum(X) - P0).norm() < 1e-11 * scale);
 }
 
-TEST_CASE("N-body: a two-body circular orbit keeps its radius", "[lab01][pts=2]") {
+TEST_CASE("N-body: a two-body circular orbit keeps its radius", "[lab01][pts=2][sec=1]") {
   const double m1 = uniform(1.0, 5.0), m2 = uniform(0.1, 1.0), G = 1.0, d = uniform(1.0, 2.0);
   const double soft = 0.01;
   // Circular orbit about the centre of mass: each body's centripetal force m w^2 r equals the
@@ -102,7 +102,7 @@ TEST_CASE("N-body: a two-body circular orbit keeps its radius", "[lab01][pts=2]"
   CHECK(worst < 1e-8);
 }
 
-TEST_CASE("diagnostics: kinetic energy is the sum of m v^2 / 2", "[lab01][pts=1]") {
+TEST_CASE("diagnostics: kinetic energy is the sum of m v^2 / 2", "[lab01][pts=1][sec=4]") {
   const VecX m = randomMasses(5);
   const ParticleSystem sys(m);
   const Mat3X v = randomPoints(5, 2.0);
@@ -112,7 +112,7 @@ TEST_CASE("diagnostics: kinetic energy is the sum of m v^2 / 2", "[lab01][pts=1]
   CHECK(kineticEnergy(sys, X) == Approx(T).epsilon(1e-13));  // round-off only
 }
 
-TEST_CASE("diagnostics: potential energy sums every force's potential", "[lab01][pts=1]") {
+TEST_CASE("diagnostics: potential energy sums every force's potential", "[lab01][pts=1][sec=4]") {
   ParticleSystem sys(randomMasses(4));
   const int count = 2 + static_cast<int>(uniform(0.0, 3.0));  // 2 to 4: several always add up
   double expected = 0.0;
@@ -125,7 +125,7 @@ TEST_CASE("diagnostics: potential energy sums every force's potential", "[lab01]
   CHECK(potentialEnergy(sys, X) == Approx(expected).epsilon(1e-13));  // a sum: round-off only
 }
 
-TEST_CASE("diagnostics: linear momentum is the sum of m v", "[lab01][pts=1]") {
+TEST_CASE("diagnostics: linear momentum is the sum of m v", "[lab01][pts=1][sec=4]") {
   const VecX m = randomMasses(6);
   const ParticleSystem sys(m);
   const Mat3X v = randomPoints(6, 2.0);
@@ -133,7 +133,7 @@ TEST_CASE("diagnostics: linear momentum is the sum of m v", "[lab01][pts=1]") {
   CHECK((linearMomentum(sys, X) - v * m).norm() < 1e-13 * (v * m).norm() + 1e-15);
 }
 
-TEST_CASE("diagnostics: angular momentum is the sum of x cross m v", "[lab01][pts=1]") {
+TEST_CASE("diagnostics: angular momentum is the sum of x cross m v", "[lab01][pts=1][sec=4]") {
   const VecX m = randomMasses(6);
   const ParticleSystem sys(m);
   const Mat3X x = randomPoints(6, 2.0), v = randomPoints(6, 2.0);

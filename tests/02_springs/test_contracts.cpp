@@ -125,19 +125,19 @@ void fillFromDense(const SpringNetwork& net, const MatX& A, SpringMatrix& M) {
 
 }  // namespace
 
-TEST_CASE("implicit: one LDLT step solves the linearised system with damping, drag and pins", "[lab02][pts=1]") {
+TEST_CASE("implicit: one LDLT step solves the linearised system with damping, drag and pins", "[lab02][pts=1][sec=3]") {
   checkOneStep({LinearSolver::LDLT, 1e-13, 1000});
 }
 
-TEST_CASE("implicit: one CG step solves the linearised system with damping, drag and pins", "[lab02][pts=1]") {
+TEST_CASE("implicit: one CG step solves the linearised system with damping, drag and pins", "[lab02][pts=1][sec=3]") {
   checkOneStep({LinearSolver::ConjugateGradient, 1e-13, 1000});
 }
 
-TEST_CASE("implicit: the penalty ground enters the right-hand side only, not A", "[lab02][pts=1]") {
+TEST_CASE("implicit: the penalty ground enters the right-hand side only, not A", "[lab02][pts=1][sec=3]") {
   checkOneStep({LinearSolver::LDLT, 1e-13, 1000}, true);
 }
 
-TEST_CASE("implicit: CG that runs out of iterations throws NumericalFailure", "[lab02][pts=1]") {
+TEST_CASE("implicit: CG that runs out of iterations throws NumericalFailure", "[lab02][pts=1][sec=3]") {
   const Scene scene = randomCloth();
   const SpringSystem sys(scene.net);
   VecX X = scene.X;
@@ -151,7 +151,7 @@ TEST_CASE("implicit: CG that runs out of iterations throws NumericalFailure", "[
                   NumericalFailure);
 }
 
-TEST_CASE("implicit: the step reports its CG iterations and relative residual", "[lab02][pts=1]") {
+TEST_CASE("implicit: the step reports its CG iterations and relative residual", "[lab02][pts=1][sec=3]") {
   const Scene scene = randomCloth();
   const SpringSystem sys(scene.net);
   const double h = 0.02, tolerance = 1e-4;
@@ -189,7 +189,7 @@ CGResult coldStartCG(const Scene& scene, double h, double tolerance) {
 
 }  // namespace
 
-TEST_CASE("implicit: the reported CG iterations are those block-Jacobi CG needs from a cold start", "[lab02][pts=1]") {
+TEST_CASE("implicit: the reported CG iterations are those block-Jacobi CG needs from a cold start", "[lab02][pts=1][sec=3]") {
   const Scene scene = randomCloth();
   const SpringSystem sys(scene.net);  // fresh: its CG starts from dv = 0
   const double h = uniform(0.01, 0.03), tolerance = 1e-6;
@@ -203,7 +203,7 @@ TEST_CASE("implicit: the reported CG iterations are those block-Jacobi CG needs 
   CHECK(stats.iterations == expected.iterations);
 }
 
-TEST_CASE("implicit: CG that converges on its last allowed iteration is a success", "[lab02][pts=1]") {
+TEST_CASE("implicit: CG that converges on its last allowed iteration is a success", "[lab02][pts=1][sec=3]") {
   const Scene scene = randomCloth();
   const double h = uniform(0.01, 0.03), tolerance = 1e-6;
   const CGResult needed = coldStartCG(scene, h, tolerance);
@@ -224,7 +224,7 @@ TEST_CASE("implicit: CG that converges on its last allowed iteration is a succes
                   NumericalFailure);
 }
 
-TEST_CASE("implicit: CG starts from the last step's dv, so repeating a solved step takes no iterations", "[lab02][pts=1]") {
+TEST_CASE("implicit: CG starts from the last step's dv, so repeating a solved step takes no iterations", "[lab02][pts=1][sec=3]") {
   const Scene scene = randomCloth();
   const SpringSystem sys(scene.net);
   const double h = uniform(0.01, 0.03);
@@ -239,7 +239,7 @@ TEST_CASE("implicit: CG starts from the last step's dv, so repeating a solved st
   CHECK((Y - X).norm() == 0.0);  // dv untouched: the same update, bit for bit
 }
 
-TEST_CASE("implicit: a network at rest without external forces stays at rest, residual 0", "[lab02][pts=1]") {
+TEST_CASE("implicit: a network at rest without external forces stays at rest, residual 0", "[lab02][pts=1][sec=3]") {
   SpringNetwork net = makeCloth(4, 4, 1.0, 1.0, 0.5, uniform(100.0, 1000.0), uniform(0.5, 2.0));
   net.gravity.setZero();
   net.drag = 0.1;

@@ -62,7 +62,7 @@ std::pair<double, VecX> topMode(const SpringNetwork& net) {
 
 }  // namespace
 
-TEST_CASE("springs: the force follows the lecture's formula", "[lab02][pts=2]") {
+TEST_CASE("springs: the force follows the lecture's formula", "[lab02][pts=2][sec=1]") {
   const Spring s = randomSpring();
   const Vec3 xa = randomVec3(1.0), xb = xa + Vec3(0.5, 0, 0) + randomVec3(0.3);
   const Vec3 va = randomVec3(1.0), vb = randomVec3(1.0);
@@ -71,7 +71,7 @@ TEST_CASE("springs: the force follows the lecture's formula", "[lab02][pts=2]") 
   CHECK((springForce(s, xa, xb, va, vb) - expected).norm() < 1e-12 * expected.norm());
 }
 
-TEST_CASE("springs: force and Jacobians by hand: stretched and compressed, approaching and separating", "[lab02][pts=1]") {
+TEST_CASE("springs: force and Jacobians by hand: stretched and compressed, approaching and separating", "[lab02][pts=1][sec=1]") {
   // A spring along x: x_a = 0, x_b = (2, 0, 0), so l = (-2, 0, 0), |l| = 2, u = (-1, 0, 0),
   // P = diag(0, 1, 1); ks = 10, kd = 0.5; b still, a moving with (va, 1, 0), so l_dot.u = -va and
   // P l_dot = (0, 1, 0). Then s = ks (2 - r) - kd va and f_a = -s u = (s, 0, 0) (no y: the damper
@@ -104,7 +104,7 @@ TEST_CASE("springs: force and Jacobians by hand: stretched and compressed, appro
   }
 }
 
-TEST_CASE("springs: exact Jacobians match central differences", "[lab02][pts=2]") {
+TEST_CASE("springs: exact Jacobians match central differences", "[lab02][pts=2][sec=1]") {
   for (int sample = 0; sample < 20; ++sample) {  // stretched and compressed, every direction
     const Spring s = randomSpring();
     const Vec3 xa = randomVec3(1.0), xb = xa + Vec3(0.5, 0, 0) + randomVec3(0.3);
@@ -124,7 +124,7 @@ TEST_CASE("springs: exact Jacobians match central differences", "[lab02][pts=2]"
   }
 }
 
-TEST_CASE("springs: the definite Jacobian is symmetric and negative semi-definite", "[lab02][pts=1]") {
+TEST_CASE("springs: the definite Jacobian is symmetric and negative semi-definite", "[lab02][pts=1][sec=1]") {
   const Spring s = randomSpring();
   const Vec3 xa = randomVec3(1.0);
   for (double stretch : {0.5, 1.0, 1.5}) {  // compressed, at rest, stretched
@@ -139,7 +139,7 @@ TEST_CASE("springs: the definite Jacobian is symmetric and negative semi-definit
   }
 }
 
-TEST_CASE("springs: a single spring oscillates with period 2 pi sqrt(mu / k)", "[lab02][pts=2]") {
+TEST_CASE("springs: a single spring oscillates with period 2 pi sqrt(mu / k)", "[lab02][pts=2][sec=1]") {
   SpringNetwork net = freeChain(2, 1.0, uniform(10.0, 100.0), 0.0);
   net.masses << uniform(0.5, 2.0), uniform(0.5, 2.0);
   const SpringSystem sys(net);
@@ -163,7 +163,7 @@ TEST_CASE("springs: a single spring oscillates with period 2 pi sqrt(mu / k)", "
   CHECK(crossings[1] - crossings[0] == Approx(period).epsilon(1e-5));
 }
 
-TEST_CASE("springs: internal forces conserve the momentum of a free network", "[lab02][pts=1]") {
+TEST_CASE("springs: internal forces conserve the momentum of a free network", "[lab02][pts=1][sec=1]") {
   SpringNetwork net = makeJelly(3, 1.0, 0.0, 2.0, uniform(10.0, 100.0), uniform(0.0, 1.0));
   net.gravity.setZero();
   const SpringSystem sys(net);
@@ -176,7 +176,7 @@ TEST_CASE("springs: internal forces conserve the momentum of a free network", "[
   CHECK((momentum(X) - P0).norm() < 1e-12 * net.masses.sum());
 }
 
-TEST_CASE("springs: each spring of a hanging chain stretches by the weight below it over k", "[lab02][pts=2]") {
+TEST_CASE("springs: each spring of a hanging chain stretches by the weight below it over k", "[lab02][pts=2][sec=1]") {
   const Index n = 6;
   const double k = uniform(50.0, 200.0), m = uniform(0.05, 0.2), g = 9.81;
   SpringNetwork net = makeRope(n, 1.0, m * (n - 1), k, 0.0);
@@ -193,7 +193,7 @@ TEST_CASE("springs: each spring of a hanging chain stretches by the weight below
   CHECK(F.segment(3, 3 * (n - 1)).cwiseAbs().maxCoeff() < 1e-10 * m * g);
 }
 
-TEST_CASE("stability: symplectic Euler on a chain breaks at h omega_max = 2", "[lab02][pts=2]") {
+TEST_CASE("stability: symplectic Euler on a chain breaks at h omega_max = 2", "[lab02][pts=2][sec=1]") {
   const Index n = 6;
   const double m = uniform(0.5, 2.0), k = uniform(50.0, 500.0);
   const SpringNetwork net = freeChain(n, m, k, 0.0);
@@ -222,7 +222,7 @@ TEST_CASE("stability: symplectic Euler on a chain breaks at h omega_max = 2", "[
   CHECK(w < 2.0 * std::sqrt(k / m));  // a finite chain's top mode lies below 2 sqrt(k/m)
 }
 
-TEST_CASE("stability: explicit Euler's energy grows by 1 + (h omega_max)^2 per step", "[lab02][pts=2]") {
+TEST_CASE("stability: explicit Euler's energy grows by 1 + (h omega_max)^2 per step", "[lab02][pts=2][sec=1]") {
   const SpringNetwork net = freeChain(6, uniform(0.5, 2.0), uniform(50.0, 500.0), 0.0);
   const SpringSystem sys(net);
   const auto [w, mode] = topMode(net);
@@ -242,7 +242,7 @@ TEST_CASE("stability: explicit Euler's energy grows by 1 + (h omega_max)^2 per s
   }
 }
 
-TEST_CASE("implicit: stays bounded at k = 10^6 and h = 1/60", "[lab02][pts=2]") {
+TEST_CASE("implicit: stays bounded at k = 10^6 and h = 1/60", "[lab02][pts=2][sec=3]") {
   SpringNetwork net = makeCloth(8, 8, 1.0, 0.0, 0.5, 1e6, 0.0);
   net.gravity.setZero();
   const SpringSystem sys(net);
@@ -254,7 +254,7 @@ TEST_CASE("implicit: stays bounded at k = 10^6 and h = 1/60", "[lab02][pts=2]") 
   CHECK(sys.energy(X) <= E0 * (1.0 + 1e-9));  // implicit Euler dissipates: never above E0
 }
 
-TEST_CASE("implicit: adds no energy to an unforced undamped network over 1000 steps", "[lab02][pts=2]") {
+TEST_CASE("implicit: adds no energy to an unforced undamped network over 1000 steps", "[lab02][pts=2][sec=3]") {
   SpringNetwork net = makeJelly(3, 1.0, 0.0, 1.0, uniform(50.0, 500.0), 0.0);
   net.gravity.setZero();
   const SpringSystem sys(net);
@@ -292,7 +292,7 @@ TEST_CASE("implicit: adds no energy to an unforced undamped network over 1000 st
   CHECK(explicit_end > 1e3 * E0);
 }
 
-TEST_CASE("implicit: CG and LDLT take the same step", "[lab02][pts=1]") {
+TEST_CASE("implicit: CG and LDLT take the same step", "[lab02][pts=1][sec=3]") {
   const SpringSystem sys(makeCloth(6, 6, 1.0, 1.0, 0.3, uniform(100.0, 1e4), uniform(0.0, 2.0)));
   VecX X = perturbed(sys, 0.05);
   VecX Y = X;
@@ -302,7 +302,7 @@ TEST_CASE("implicit: CG and LDLT take the same step", "[lab02][pts=1]") {
   CHECK((X - Y).norm() < 1e-8 * X.norm());
 }
 
-TEST_CASE("implicit: a network without springs: a lone particle falls with dv = h (m g - d v) / (m + h d), a pinned one stays", "[lab02][pts=1]") {
+TEST_CASE("implicit: a network without springs: a lone particle falls with dv = h (m g - d v) / (m + h d), a pinned one stays", "[lab02][pts=1][sec=3]") {
   // No springs at all (an empty list), one free particle and one pinned, gravity and drag: A is
   // (m + h d) 1 for the free particle and 1 for the pinned one, b = h (m g - d v) and 0.
   SpringNetwork net;
@@ -330,7 +330,7 @@ TEST_CASE("implicit: a network without springs: a lone particle falls with dv = 
   }
 }
 
-TEST_CASE("implicit: pinned particles do not move", "[lab02][pts=1]") {
+TEST_CASE("implicit: pinned particles do not move", "[lab02][pts=1][sec=3]") {
   SpringNetwork net = makeCloth(5, 5, 1.0, 1.0, 0.2, 500.0, 0.5);
   net.masses[0] = net.masses[4] = std::numeric_limits<double>::infinity();
   const SpringSystem sys(net);
@@ -343,7 +343,7 @@ TEST_CASE("implicit: pinned particles do not move", "[lab02][pts=1]") {
   CHECK((positions(X) - positions(X0)).norm() > 0.1);  // while the rest falls
 }
 
-TEST_CASE("implicit: a damped cloth pinned at two corners comes to rest", "[lab02][pts=2]") {
+TEST_CASE("implicit: a damped cloth pinned at two corners comes to rest", "[lab02][pts=2][sec=3]") {
   SpringNetwork net = makeCloth(7, 7, 1.0, 1.0, 0.3, 1000.0, 1.0);
   net.masses[0] = net.masses[6] = std::numeric_limits<double>::infinity();
   net.drag = 0.02;  // air drag damps the pendulum swing that spring damping cannot see
@@ -354,7 +354,7 @@ TEST_CASE("implicit: a damped cloth pinned at two corners comes to rest", "[lab0
   CHECK(velocities(X).colwise().norm().maxCoeff() < 1e-3);
 }
 
-TEST_CASE("ground: touching the plane is no contact, and a ground switched off neither pushes nor damps", "[lab02][pts=1]") {
+TEST_CASE("ground: touching the plane is no contact, and a ground switched off neither pushes nor damps", "[lab02][pts=1][sec=4]") {
   const Vec3 sinking(0.5, -0.25, -1.5), rising(0.5, -0.25, 1.5);
   const Ground on{0.5, 1000.0, 4.0}, off{0.5, 0.0, 4.0};
   for (const Vec3& v : {sinking, rising}) {
@@ -368,7 +368,7 @@ TEST_CASE("ground: touching the plane is no contact, and a ground switched off n
   }
 }
 
-TEST_CASE("ground: the penalty force pushes up in proportion to depth", "[lab02][pts=1]") {
+TEST_CASE("ground: the penalty force pushes up in proportion to depth", "[lab02][pts=1][sec=4]") {
   const Ground ground{uniform(-1.0, 1.0), uniform(100.0, 1e4), uniform(0.0, 10.0)};
   const Vec3 v = randomVec3(1.0);
   const double depth = uniform(0.01, 0.1);

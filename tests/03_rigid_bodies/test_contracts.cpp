@@ -21,7 +21,7 @@ Mat3 randomInertia() {
 
 }  // namespace
 
-TEST_CASE("inertia: point masses of unequal mass obey the parallel-axis theorem", "[lab03][pts=1]") {
+TEST_CASE("inertia: point masses of unequal mass obey the parallel-axis theorem", "[lab03][pts=1][sec=1]") {
   const Index n = 6;
   VecX m(n);
   Mat3X r(3, n);
@@ -42,7 +42,7 @@ TEST_CASE("inertia: point masses of unequal mass obey the parallel-axis theorem"
   CHECK((shifted - about_origin).norm() < 1e-12 * about_origin.norm());
 }
 
-TEST_CASE("inertia: a single point mass has no inertia about itself, two make a rod", "[lab03][pts=1]") {
+TEST_CASE("inertia: a single point mass has no inertia about itself, two make a rod", "[lab03][pts=1][sec=1]") {
   // One point mass (the least the header allows) sits at its own centre of mass: I = 0, up to
   // the round-off of c = m r / m (~1e-16 |r|, squared).
   const Mat3 single = pointMassInertia(VecX::Constant(1, 2.0), Vec3(1.0, -2.0, 3.0));
@@ -55,7 +55,7 @@ TEST_CASE("inertia: a single point mass has no inertia about itself, two make a 
   CHECK((rod - Vec3(0.0, 12.0, 12.0).asDiagonal().toDenseMatrix()).norm() < 1e-14);
 }
 
-TEST_CASE("forces: the wrench of no force is zero, of one force that force and its moment", "[lab03][pts=1]") {
+TEST_CASE("forces: the wrench of no force is zero, of one force that force and its moment", "[lab03][pts=1][sec=3]") {
   const Vec3 x(1.0, 0.0, 0.0);
   // An empty list: nothing to sum, an exact zero.
   const Wrench none = wrenchAbout(x, {});
@@ -71,7 +71,7 @@ TEST_CASE("forces: the wrench of no force is zero, of one force that force and i
   CHECK((other.torque - Vec3(0.0, 6.0, 0.0)).norm() == 0.0);
 }
 
-TEST_CASE("rigid: the exponential update at its edges: no turn at omega = 0 or h = 0, the tiniest turn kept, a negative step turns back", "[lab03][pts=1]") {
+TEST_CASE("rigid: the exponential update at its edges: no turn at omega = 0 or h = 0, the tiniest turn kept, a negative step turns back", "[lab03][pts=1][sec=5]") {
   const Quat q0(Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, 2.0) / 3.0));
   const Vec3 omega(0.3, -0.4, 1.2);
   // Angle exactly 0, either way: q comes back unchanged (round-off at most, 1e-15).
@@ -88,7 +88,7 @@ TEST_CASE("rigid: the exponential update at its edges: no turn at omega = 0 or h
   CHECK((tiny.coeffs() - expected.coeffs()).norm() < 1e-15);
 }
 
-TEST_CASE("rigid: angular velocity depends on the rotation q stands for, not on its length", "[lab03][pts=1]") {
+TEST_CASE("rigid: angular velocity depends on the rotation q stands for, not on its length", "[lab03][pts=1][sec=2]") {
   const RigidBody body(uniform(1.0, 3.0), randomInertia());
   const Quat q(randomRotation());
   const Vec3 L = randomVec3(2.0);
@@ -102,7 +102,7 @@ TEST_CASE("rigid: angular velocity depends on the rotation q stands for, not on 
   CHECK((R * body.inertia_body * R.transpose() * omega - L).norm() < 1e-12 * L.norm());
 }
 
-TEST_CASE("rigid: Euler's equations balance torque and the gyroscopic term for any inertia tensor", "[lab03][pts=1]") {
+TEST_CASE("rigid: Euler's equations balance torque and the gyroscopic term for any inertia tensor", "[lab03][pts=1][sec=7]") {
   const Mat3 I = randomInertia();  // not diagonal: the body axes are not its principal axes
   const Vec3 omega = randomVec3(2.0), torque = randomVec3(5.0);
   const Vec3 gyroscopic = omega.cross(I * omega);
@@ -113,7 +113,7 @@ TEST_CASE("rigid: Euler's equations balance torque and the gyroscopic term for a
   CHECK((I * bodyFrameOmegaRate(I, Vec3::Zero(), torque) - torque).norm() < 1e-12 * torque.norm());
 }
 
-TEST_CASE("bad input: no inertia for a non-positive mass or size, no rotation for a zero quaternion", "[lab03][pts=1]") {
+TEST_CASE("bad input: no inertia for a non-positive mass or size, no rotation for a zero quaternion", "[lab03][pts=1][sec=1][sec=2]") {
   using Catch::Matchers::Contains;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double M = uniform(0.5, 2.0), r = uniform(0.1, 1.0);

@@ -41,26 +41,26 @@ double analyticFlipTime(const Vec3& I, const Vec3& w) {
 
 }  // namespace
 
-TEST_CASE("inertia: a solid box matches its closed-form tensor", "[lab03][pts=1]") {
+TEST_CASE("inertia: a solid box matches its closed-form tensor", "[lab03][pts=1][sec=1]") {
   const double M = uniform(0.5, 5.0), a = uniform(0.1, 2.0), b = uniform(0.1, 2.0), c = uniform(0.1, 2.0);
   // The closed form evaluated here in another order: round-off only.
   CHECK(boxInertia(M, Vec3(a, b, c)).isApprox(diag(b * b + c * c, a * a + c * c, a * a + b * b) * M / 12, 1e-14));
 }
 
-TEST_CASE("inertia: a solid sphere matches 2/5 M r^2 on every axis", "[lab03][pts=1]") {
+TEST_CASE("inertia: a solid sphere matches 2/5 M r^2 on every axis", "[lab03][pts=1][sec=1]") {
   const double M = uniform(0.5, 5.0), r = uniform(0.1, 2.0);
   // The closed form evaluated here in another order: round-off only.
   CHECK(sphereInertia(M, r).isApprox(Mat3::Identity() * 2.0 / 5.0 * M * r * r, 1e-14));
 }
 
-TEST_CASE("inertia: a solid cylinder matches its closed-form tensor", "[lab03][pts=1]") {
+TEST_CASE("inertia: a solid cylinder matches its closed-form tensor", "[lab03][pts=1][sec=1]") {
   const double M = uniform(0.5, 5.0), r = uniform(0.1, 2.0), height = uniform(0.1, 2.0);
   const double across = M * (3 * r * r + height * height) / 12;
   // The closed form evaluated here in another order: round-off only.
   CHECK(cylinderInertia(M, r, height).isApprox(diag(across, across, M * r * r / 2), 1e-14));
 }
 
-TEST_CASE("inertia: point masses sampling a box converge to the box's tensor", "[lab03][pts=2]") {
+TEST_CASE("inertia: point masses sampling a box converge to the box's tensor", "[lab03][pts=2][sec=1]") {
   const double M = uniform(0.5, 5.0);
   const Vec3 size(uniform(0.5, 2.0), uniform(0.5, 2.0), uniform(0.5, 2.0));
   const Vec3 offset = randomVec3(3.0);  // the centre of mass must be moved to the origin
@@ -84,7 +84,7 @@ TEST_CASE("inertia: point masses sampling a box converge to the box's tensor", "
   }
 }
 
-TEST_CASE("forces: the wrench sums the forces and the moments (p - x) x F", "[lab03][pts=1]") {
+TEST_CASE("forces: the wrench sums the forces and the moments (p - x) x F", "[lab03][pts=1][sec=3]") {
   const Vec3 x = randomVec3(2.0);
   std::vector<AppliedForce> forces;
   Vec3 F = Vec3::Zero(), tau = Vec3::Zero();
@@ -98,7 +98,7 @@ TEST_CASE("forces: the wrench sums the forces and the moments (p - x) x F", "[la
   CHECK(w.torque.isApprox(tau, 1e-13));  // one cross product more per term: round-off only
 }
 
-TEST_CASE("forces: a body point moves with v + omega x (p - x)", "[lab03][pts=1]") {
+TEST_CASE("forces: a body point moves with v + omega x (p - x)", "[lab03][pts=1][sec=3]") {
   const Vec3 v = randomVec3(1.0), w = randomVec3(2.0), x = randomVec3(1.0), p = randomVec3(1.0);
   const Vec3 r = p - x;
   const Vec3 expected(v.x() + w.y() * r.z() - w.z() * r.y(), v.y() + w.z() * r.x() - w.x() * r.z(),
@@ -106,7 +106,7 @@ TEST_CASE("forces: a body point moves with v + omega x (p - x)", "[lab03][pts=1]
   CHECK(pointVelocity(v, w, x, p).isApprox(expected, 1e-14));
 }
 
-TEST_CASE("rigid: angular velocity is R I_body^-1 R^T L", "[lab03][pts=1]") {
+TEST_CASE("rigid: angular velocity is R I_body^-1 R^T L", "[lab03][pts=1][sec=2]") {
   // A full body tensor (principal axes turned by B), so that using only its diagonal fails.
   const Mat3 B = randomRotation();
   const RigidBody body(uniform(1.0, 3.0), B * diag(uniform(0.5, 1.0), uniform(1.5, 2.0), uniform(2.5, 3.0)) * B.transpose());
@@ -118,7 +118,7 @@ TEST_CASE("rigid: angular velocity is R I_body^-1 R^T L", "[lab03][pts=1]") {
   CHECK((R * body.inertia_body * R.transpose() * omega).isApprox(L, 1e-12));
 }
 
-TEST_CASE("rigid: the position rate is xdot = P / M and qdot = 1/2 omega q", "[lab03][pts=1]") {
+TEST_CASE("rigid: the position rate is xdot = P / M and qdot = 1/2 omega q", "[lab03][pts=1][sec=4]") {
   const RigidBodySystem sys(RigidBody(uniform(0.5, 3.0), diag(uniform(0.5, 1.0), uniform(1.5, 2.0), uniform(2.5, 3.0))));
   const VecX X = sys.makeState(randomVec3(1.0), Quat(randomRotation()), randomVec3(2.0), randomVec3(2.0));
   VecX qdot(7);
@@ -137,7 +137,7 @@ TEST_CASE("rigid: the position rate is xdot = P / M and qdot = 1/2 omega q", "[l
   CHECK(std::abs(X.segment<4>(3).dot(qdot.tail<4>())) < 1e-14 * qdot.norm());
 }
 
-TEST_CASE("rigid: the velocity rate is the total force and the torque about the centre", "[lab03][pts=1]") {
+TEST_CASE("rigid: the velocity rate is the total force and the torque about the centre", "[lab03][pts=1][sec=4]") {
   std::vector<BodyForce> forces;
   for (int i = 0; i < 3; ++i) forces.push_back({randomVec3(1.0), randomVec3(5.0)});
   const Vec3 g = randomVec3(10.0);
@@ -158,7 +158,7 @@ TEST_CASE("rigid: the velocity rate is the total force and the torque about the 
   CHECK(pdot.tail<3>().isApprox(tau, 1e-12));
 }
 
-TEST_CASE("rigid: a force through the centre of mass produces no rotation", "[lab03][pts=1]") {
+TEST_CASE("rigid: a force through the centre of mass produces no rotation", "[lab03][pts=1][sec=4]") {
   const RigidBodySystem sys(RigidBody(2.0, diag(1, 2, 3)), {{Vec3::Zero(), randomVec3(5.0)}});
   VecX X = sys.makeState(randomVec3(1.0), Quat(randomRotation()), randomVec3(1.0), Vec3::Zero());
   const Quat q0 = orientationOf(X);
@@ -168,7 +168,7 @@ TEST_CASE("rigid: a force through the centre of mass produces no rotation", "[la
   CHECK(orientationOf(X).isApprox(q0, 1e-15));
 }
 
-TEST_CASE("rigid: a pure couple produces no translation", "[lab03][pts=1]") {
+TEST_CASE("rigid: a pure couple produces no translation", "[lab03][pts=1][sec=4]") {
   const Vec3 r = randomVec3(1.0), F = randomVec3(5.0);
   const RigidBodySystem sys(RigidBody(2.0, diag(1, 2, 3)), {{r, F}, {-r, -F}});
   const Vec3 x0 = randomVec3(1.0);
@@ -187,7 +187,7 @@ TEST_CASE("rigid: a pure couple produces no translation", "[lab03][pts=1]") {
   CHECK((X.head<3>() - x0).norm() < 1e-14);
 }
 
-TEST_CASE("rigid: a torque-free body conserves world angular momentum to round-off", "[lab03][pts=2]") {
+TEST_CASE("rigid: a torque-free body conserves world angular momentum to round-off", "[lab03][pts=2][sec=4]") {
   const RigidBodySystem sys(RigidBody(1.0, diag(uniform(0.5, 1.0), uniform(1.5, 2.0), uniform(2.5, 3.0))));
   VecX X = sys.makeState(Vec3::Zero(), Quat(randomRotation()), randomVec3(1.0), randomVec3(2.0));
   const Vec3 L0 = X.segment<3>(10);
@@ -198,7 +198,7 @@ TEST_CASE("rigid: a torque-free body conserves world angular momentum to round-o
   CHECK(omegaBody(sys, X).norm() > 0.1);
 }
 
-TEST_CASE("rigid: RK4's energy drift is far below explicit Euler's on a torque-free body", "[lab03][pts=2]") {
+TEST_CASE("rigid: RK4's energy drift is far below explicit Euler's on a torque-free body", "[lab03][pts=2][sec=4]") {
   const RigidBodySystem sys(RigidBody(1.0, diag(1, 2, 3)));
   const VecX X0 = spinning(sys, Vec3(uniform(0.5, 1.0), uniform(0.1, 0.3), uniform(0.5, 1.0)));
   const double E0 = sys.kineticEnergy(X0);
@@ -214,7 +214,7 @@ TEST_CASE("rigid: RK4's energy drift is far below explicit Euler's on a torque-f
   CHECK(drift[0] * 1000.0 < drift[1]);
 }
 
-TEST_CASE("rigid: an axisymmetric top precesses at (I3 - I1) / I1 omega3 in the body frame", "[lab03][pts=2]") {
+TEST_CASE("rigid: an axisymmetric top precesses at (I3 - I1) / I1 omega3 in the body frame", "[lab03][pts=2][sec=7]") {
   const double I1 = uniform(1.0, 2.0), I3 = uniform(2.5, 4.0);
   const Vec3 w0(uniform(0.1, 0.5), 0.0, uniform(1.0, 3.0));
   const Mat3 I = diag(I1, I1, I3);
@@ -237,7 +237,7 @@ TEST_CASE("rigid: an axisymmetric top precesses at (I3 - I1) / I1 omega3 in the 
   CHECK(w.z() == Approx(w0.z()).epsilon(1e-12));
 }
 
-TEST_CASE("rigid: the intermediate axis flips near the analytic time while the others stay stable", "[lab03][pts=3]") {
+TEST_CASE("rigid: the intermediate axis flips near the analytic time while the others stay stable", "[lab03][pts=3][sec=4]") {
   const RigidBodySystem sys(RigidBody(1.0, diag(1, 2, 3)));
   const Vec3 w0(1e-3, 1.0, 0.0);
   const double t_flip = analyticFlipTime(Vec3(1, 2, 3), w0);
@@ -268,7 +268,7 @@ TEST_CASE("rigid: the intermediate axis flips near the analytic time while the o
   }
 }
 
-TEST_CASE("rigid: renormalising keeps |q| = 1 while plain integration drifts", "[lab03][pts=2]") {
+TEST_CASE("rigid: renormalising keeps |q| = 1 while plain integration drifts", "[lab03][pts=2][sec=4]") {
   RigidBodySystem sys(RigidBody(1.0, diag(1, 2, 3)));
   const VecX X0 = spinning(sys, Vec3(0.5, 1.0, 0.3));
   VecX X = X0;
@@ -283,7 +283,7 @@ TEST_CASE("rigid: renormalising keeps |q| = 1 while plain integration drifts", "
   CHECK(std::abs(orientationOf(X).norm() - 1.0) < 1e-12);
 }
 
-TEST_CASE("rigid: Gram-Schmidt keeps a rotation matrix orthonormal", "[lab03][pts=2]") {
+TEST_CASE("rigid: Gram-Schmidt keeps a rotation matrix orthonormal", "[lab03][pts=2][sec=6]") {
   const RigidBody body(1.0, diag(1, 2, 3));
   const Quat q0(randomRotation());
   // |L| in [1, 2], so that |omega| >= 1/3 and the uncorrected drift is well above its floor.
@@ -305,7 +305,7 @@ TEST_CASE("rigid: Gram-Schmidt keeps a rotation matrix orthonormal", "[lab03][pt
   CHECK(det == Approx(1.0).epsilon(1e-13));  // a rotation, not a reflection; round-off only
 }
 
-TEST_CASE("rigid: a plain rotation-matrix step is one explicit Euler step and drifts off the rotations", "[lab03][pts=1]") {
+TEST_CASE("rigid: a plain rotation-matrix step is one explicit Euler step and drifts off the rotations", "[lab03][pts=1][sec=6]") {
   const Mat3 R0 = randomRotation();
   const Vec3 omega = uniform(1.0, 2.0) * Vec3(randomRotation().col(0));  // |omega| in [1, 2]
   const double h = 0.01;
@@ -322,7 +322,7 @@ TEST_CASE("rigid: a plain rotation-matrix step is one explicit Euler step and dr
   CHECK(plain_error > 1e-2);
 }
 
-TEST_CASE("rigid: the orthonormalising rotation-matrix step stays a rotation", "[lab03][pts=1]") {
+TEST_CASE("rigid: the orthonormalising rotation-matrix step stays a rotation", "[lab03][pts=1][sec=6]") {
   const Mat3 R0 = randomRotation();
   const Vec3 omega = uniform(1.0, 2.0) * Vec3(randomRotation().col(0));  // |omega| in [1, 2]
   const double h = 0.01;
@@ -334,7 +334,7 @@ TEST_CASE("rigid: the orthonormalising rotation-matrix step stays a rotation", "
   CHECK(repaired.determinant() == Approx(1.0).epsilon(1e-13));  // a rotation, not a reflection
 }
 
-TEST_CASE("rigid: the exponential map rotates by exactly |omega| h", "[lab03][pts=2]") {
+TEST_CASE("rigid: the exponential map rotates by exactly |omega| h", "[lab03][pts=2][sec=5]") {
   const Quat q0(randomRotation());
   const Vec3 omega = randomVec3(2.0);
   const double h = uniform(0.01, 1.0);
@@ -351,7 +351,7 @@ TEST_CASE("rigid: the exponential map rotates by exactly |omega| h", "[lab03][pt
   CHECK((q * Vec3::UnitX()).isApprox(Vec3(std::cos(1.0), std::sin(1.0), 0.0), 1e-14));
 }
 
-TEST_CASE("rigid: two explicit Euler steps of a box pushed off-centre match the hand computation", "[lab03][pts=2]") {
+TEST_CASE("rigid: two explicit Euler steps of a box pushed off-centre match the hand computation", "[lab03][pts=2][sec=4]") {
   // Box M = 2, edges (1, 2, 3): I_body = 2/12 diag(13, 10, 5). Force (0, 0, 1) N at body point
   // (0.5, 0, 0), at rest at the origin, h = 0.1.
   // Step 1: P = (0, 0, 0.1), L = h (r x F) = 0.1 (0, -0.5, 0) = (0, -0.05, 0); x and q unchanged

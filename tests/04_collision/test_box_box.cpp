@@ -68,7 +68,7 @@ double leastOverlap15(const Box& a, const Pose& pa, const Box& b, const Pose& pb
 
 }  // namespace
 
-TEST_CASE("box-box: face on face, turned about the normal, touches at the overlap polygon's corners", "[lab04][pts=3]") {
+TEST_CASE("box-box: face on face, turned about the normal, touches at the overlap polygon's corners", "[lab04][pts=3][sec=5]") {
   for (int trial = 0; trial < 20; ++trial) {
     const Box a(Vec3(uniform(0.3, 1.0), uniform(0.3, 1.0), uniform(0.2, 1.0)));
     const Box b(Vec3(uniform(0.3, 1.0), uniform(0.3, 1.0), uniform(0.2, 1.0)));
@@ -99,7 +99,7 @@ TEST_CASE("box-box: face on face, turned about the normal, touches at the overla
   }
 }
 
-TEST_CASE("box-box: a small box resting inside a large box's face touches at its 4 bottom corners", "[lab04][pts=2]") {
+TEST_CASE("box-box: a small box resting inside a large box's face touches at its 4 bottom corners", "[lab04][pts=2][sec=5]") {
   const Box a(Vec3(uniform(0.1, 0.3), uniform(0.1, 0.3), uniform(0.1, 0.3)));
   const Box b(Vec3(uniform(1.0, 2.0), uniform(1.0, 2.0), uniform(0.5, 1.0)));
   const Pose pb = randomPose(1.0);
@@ -122,7 +122,7 @@ TEST_CASE("box-box: a small box resting inside a large box's face touches at its
   CHECK((s.normal + m.normal).norm() < 1e-12);
 }
 
-TEST_CASE("box-box: a tilted box pressed into a face touches at each bottom corner with its own depth, as on a plane", "[lab04][pts=2]") {
+TEST_CASE("box-box: a tilted box pressed into a face touches at each bottom corner with its own depth, as on a plane", "[lab04][pts=2][sec=5]") {
   for (int trial = 0; trial < 20; ++trial) {
     // B is a wide slab; A is tilted by a small angle about B's x, so its 4 bottom corners lie at
     // different heights, all below B's top face (z = 0.5 in B's frame) and well inside it.
@@ -166,7 +166,7 @@ TEST_CASE("box-box: a tilted box pressed into a face touches at each bottom corn
   }
 }
 
-TEST_CASE("box-box: a box resting face down keeps its feature ids when the scene moves rigidly", "[lab04][pts=1]") {
+TEST_CASE("box-box: a box resting face down keeps its feature ids when the scene moves rigidly", "[lab04][pts=1][sec=5]") {
   // A's bottom face and B's top face are exact ties on the SAT (the same overlap); which wins
   // must not be left to round-off, or the ids (warm starting in Lab 5) flicker from step to step.
   const Box a(Vec3(uniform(0.1, 0.3), uniform(0.1, 0.3), uniform(0.1, 0.3)));
@@ -194,7 +194,7 @@ TEST_CASE("box-box: a box resting face down keeps its feature ids when the scene
   }
 }
 
-TEST_CASE("box-box: crossed edges touch at one point between the two edges", "[lab04][pts=2]") {
+TEST_CASE("box-box: crossed edges touch at one point between the two edges", "[lab04][pts=2][sec=5]") {
   for (int trial = 0; trial < 20; ++trial) {
     // In a frame F: A turned 45 degrees about x (lowest edge along x), B about y (top edge along y).
     const double ea = uniform(0.2, 0.6), eb = uniform(0.2, 0.6), overlap = uniform(0.001, 0.05);
@@ -218,7 +218,7 @@ TEST_CASE("box-box: crossed edges touch at one point between the two edges", "[l
   }
 }
 
-TEST_CASE("box-box: the normal is the axis of least overlap over the 15 axes", "[lab04][pts=2]") {
+TEST_CASE("box-box: the normal is the axis of least overlap over the 15 axes", "[lab04][pts=2][sec=5]") {
   int touching = 0;
   for (int trial = 0; trial < 40; ++trial) {
     const Box a(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
@@ -249,7 +249,7 @@ TEST_CASE("box-box: the normal is the axis of least overlap over the 15 axes", "
   CHECK(touching > 20);  // extreme points pushed into each other: most trials touch
 }
 
-TEST_CASE("clipping: a square cut by a plane keeps its inside part and the two crossings", "[lab04][pts=1]") {
+TEST_CASE("clipping: a square cut by a plane keeps its inside part and the two crossings", "[lab04][pts=1][sec=5]") {
   ContactPolygon square;
   square.add(Vec3(-1, -1, 0), 0.1, 1);
   square.add(Vec3(1, -1, 0), 0.2, 2);
@@ -293,7 +293,7 @@ TEST_CASE("clipping: a square cut by a plane keeps its inside part and the two c
   CHECK(on_left.points[0].id != on_left.points[1].id);
 }
 
-TEST_CASE("reduction: 4 of a polygon's points, the deepest first, spanning most of its area", "[lab04][pts=1]") {
+TEST_CASE("reduction: 4 of a polygon's points, the deepest first, spanning most of its area", "[lab04][pts=1][sec=5]") {
   ContactPolygon octagon;
   const double phase = uniform(0.0, 1.0);
   int deepest = static_cast<int>(uniform(0.0, 8.0)) % 8;
@@ -344,7 +344,7 @@ TEST_CASE("reduction: 4 of a polygon's points, the deepest first, spanning most 
   }
 }
 
-TEST_CASE("convex polyhedra: two boxes as polyhedra give the box-box normal and depth", "[lab04][pts=2]") {
+TEST_CASE("convex polyhedra: two boxes as polyhedra give the box-box normal and depth", "[lab04][pts=2][sec=6]") {
   int touching = 0;
   for (int trial = 0; trial < 40; ++trial) {
     const Vec3 ha(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0));
@@ -369,7 +369,7 @@ TEST_CASE("convex polyhedra: two boxes as polyhedra give the box-box normal and 
   CHECK(touching > 20);  // extreme points pushed into each other: most trials touch
 }
 
-TEST_CASE("convex polyhedra: a tetrahedron's corner pressed into a box face is one contact", "[lab04][pts=1]") {
+TEST_CASE("convex polyhedra: a tetrahedron's corner pressed into a box face is one contact", "[lab04][pts=1][sec=6]") {
   const Box box(Vec3(1.0, 1.0, 0.5));
   const Pose pb = randomPose(1.0);
   // A tetrahedron pointing down (-z in B's frame) with its apex at the origin of its frame.

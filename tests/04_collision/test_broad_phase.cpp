@@ -69,17 +69,17 @@ long intervalOverlaps(const std::vector<Aabb>& boxes, int axis) {
 
 }  // namespace
 
-TEST_CASE("sort and sweep: same pairs as brute force on random scenes", "[lab04][pts=2]") {
+TEST_CASE("sort and sweep: same pairs as brute force on random scenes", "[lab04][pts=2][sec=1]") {
   SweepAndPrune sap;
   checkRandomScenes(sap);
 }
 
-TEST_CASE("sort and sweep: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1]") {
+TEST_CASE("sort and sweep: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1][sec=1]") {
   SweepAndPrune sap;
   checkDegenerateScenes(sap);
 }
 
-TEST_CASE("sort and sweep: update after moves matches brute force", "[lab04][pts=2]") {
+TEST_CASE("sort and sweep: update after moves matches brute force", "[lab04][pts=2][sec=1]") {
   for (BoxSizes sizes : {BoxSizes::Uniform, BoxSizes::WideRange, BoxSizes::Clustered}) {
     const int n = randomCount(10, 2000);
     std::vector<Aabb> boxes = randomScene(n, sizes);
@@ -95,7 +95,7 @@ TEST_CASE("sort and sweep: update after moves matches brute force", "[lab04][pts
   }
 }
 
-TEST_CASE("sort and sweep: insertion sort makes one swap per inversion", "[lab04][pts=1]") {
+TEST_CASE("sort and sweep: insertion sort makes one swap per inversion", "[lab04][pts=1][sec=1]") {
   // Boxes spread far along x (centres 0, 1, 2, ...) and little along y and z: x is the sweep
   // axis, and the sorted order after build is the index order.
   const int n = randomCount(50, 400);  // the inversions are counted below by brute force: O(n^2)
@@ -140,7 +140,7 @@ TEST_CASE("sort and sweep: insertion sort makes one swap per inversion", "[lab04
   CHECK_SAME_PAIRS(pairs, bruteForcePairs(boxes));
 }
 
-TEST_CASE("sort and sweep: sweeps the axis of widest spread, testing exactly the pairs overlapping on it", "[lab04][pts=1]") {
+TEST_CASE("sort and sweep: sweeps the axis of widest spread, testing exactly the pairs overlapping on it", "[lab04][pts=1][sec=1]") {
   // Stretching the scene threefold along one axis makes the centres spread most along it,
   // far beyond the sampling noise of the other two: build must pick it.
   std::vector<Aabb> boxes = randomScene(randomCount(200, 2000), BoxSizes::Uniform);
@@ -158,7 +158,7 @@ TEST_CASE("sort and sweep: sweeps the axis of widest spread, testing exactly the
   CHECK(sap.overlapTests() == intervalOverlaps(boxes, sap.axis()));
 }
 
-TEST_CASE("uniform grid: same pairs as brute force on random scenes", "[lab04][pts=2]") {
+TEST_CASE("uniform grid: same pairs as brute force on random scenes", "[lab04][pts=2][sec=1]") {
   UniformGrid grid;
   checkRandomScenes(grid);
   // Dense scenes in which most boxes are specks, so that the cell (twice the median edge) is far
@@ -182,12 +182,12 @@ TEST_CASE("uniform grid: same pairs as brute force on random scenes", "[lab04][p
   }
 }
 
-TEST_CASE("uniform grid: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1]") {
+TEST_CASE("uniform grid: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1][sec=1]") {
   UniformGrid grid;
   checkDegenerateScenes(grid);
 }
 
-TEST_CASE("uniform grid: the cell is twice the median longest edge", "[lab04][pts=1]") {
+TEST_CASE("uniform grid: the cell is twice the median longest edge", "[lab04][pts=1][sec=1]") {
   std::vector<Aabb> boxes = randomScene(randomCount(11, 501) | 1, BoxSizes::WideRange);  // odd n: one median
   std::vector<double> edges;
   for (const Aabb& b : boxes) edges.push_back((b.max - b.min).maxCoeff());
@@ -222,17 +222,17 @@ TEST_CASE("uniform grid: the cell is twice the median longest edge", "[lab04][pt
   CHECK_SAME_PAIRS(pairs, bruteForcePairs(boxes));
 }
 
-TEST_CASE("BVH: same pairs as brute force on random scenes", "[lab04][pts=2]") {
+TEST_CASE("BVH: same pairs as brute force on random scenes", "[lab04][pts=2][sec=1]") {
   Bvh bvh;
   checkRandomScenes(bvh);
 }
 
-TEST_CASE("BVH: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1]") {
+TEST_CASE("BVH: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1][sec=1]") {
   Bvh bvh;
   checkDegenerateScenes(bvh);
 }
 
-TEST_CASE("BVH: refit after moves matches brute force", "[lab04][pts=2]") {
+TEST_CASE("BVH: refit after moves matches brute force", "[lab04][pts=2][sec=1]") {
   for (BoxSizes sizes : {BoxSizes::Uniform, BoxSizes::WideRange, BoxSizes::Clustered}) {
     const int n = randomCount(10, 2000);
     std::vector<Aabb> boxes = randomScene(n, sizes);
@@ -256,7 +256,7 @@ TEST_CASE("BVH: refit after moves matches brute force", "[lab04][pts=2]") {
   }
 }
 
-TEST_CASE("BVH: the median split builds a balanced pre-order tree", "[lab04][pts=1]") {
+TEST_CASE("BVH: the median split builds a balanced pre-order tree", "[lab04][pts=1][sec=1]") {
   // A random count, and on every run counts whose halvings end exactly at kLeafSize boxes (a
   // full leaf), at kLeafSize itself (one leaf) and one more (the first split).
   for (const int n : {randomCount(10, 2000), 8 * Bvh::kLeafSize, Bvh::kLeafSize, Bvh::kLeafSize + 1}) {
@@ -292,17 +292,17 @@ TEST_CASE("BVH: the median split builds a balanced pre-order tree", "[lab04][pts
   }
 }
 
-TEST_CASE("k-d tree: same pairs as brute force on random scenes", "[lab04][pts=2]") {
+TEST_CASE("k-d tree: same pairs as brute force on random scenes", "[lab04][pts=2][sec=1]") {
   KdTree tree;
   checkRandomScenes(tree);
 }
 
-TEST_CASE("k-d tree: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1]") {
+TEST_CASE("k-d tree: touching boxes, boxes at one point and huge boxes", "[lab04][pts=1][sec=1]") {
   KdTree tree;
   checkDegenerateScenes(tree);
 }
 
-TEST_CASE("k-d tree: a node of at most kLeafSize boxes is one leaf, and leafCount() counts the leaves", "[lab04][pts=1]") {
+TEST_CASE("k-d tree: a node of at most kLeafSize boxes is one leaf, and leafCount() counts the leaves", "[lab04][pts=1][sec=1]") {
   // Boxes in a row along x, well apart: kLeafSize of them are one leaf (the root); one more and
   // the root splits at the median centre into two children that are both leaves (the median box
   // goes to both: kLeafSize / 2 + 1 boxes each).
@@ -324,7 +324,7 @@ TEST_CASE("k-d tree: a node of at most kLeafSize boxes is one leaf, and leafCoun
   CHECK(tree.leafCount() > 1);
 }
 
-TEST_CASE("broad phase: far fewer overlap tests than brute force on a sparse scene", "[lab04][pts=2]") {
+TEST_CASE("broad phase: far fewer overlap tests than brute force on a sparse scene", "[lab04][pts=2][sec=1]") {
   const int n = 2000;
   const std::vector<Aabb> boxes = randomScene(n, BoxSizes::Uniform);
   const long all_pairs = static_cast<long>(n) * (n - 1) / 2;
@@ -344,7 +344,7 @@ TEST_CASE("broad phase: far fewer overlap tests than brute force on a sparse sce
   }
 }
 
-TEST_CASE("broad phase: one object reused on scenes of changing size", "[lab04][pts=1]") {
+TEST_CASE("broad phase: one object reused on scenes of changing size", "[lab04][pts=1][sec=1]") {
   // A world keeps one broad phase and one pair buffer for its whole life, and the number of
   // bodies may change between steps.
   std::vector<std::unique_ptr<BroadPhase>> methods;

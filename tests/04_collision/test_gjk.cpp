@@ -22,7 +22,7 @@ std::vector<Vec3> surfaceSamples(const Shape& s, const Pose& pose, int n) {
 
 }  // namespace
 
-TEST_CASE("gjk: two spheres are |x_A - x_B| - r_A - r_B apart along the line of centres", "[lab04][pts=1]") {
+TEST_CASE("gjk: two spheres are |x_A - x_B| - r_A - r_B apart along the line of centres", "[lab04][pts=1][sec=8]") {
   const double ra = uniform(0.2, 1.0), rb = uniform(0.2, 1.0), gap = uniform(0.01, 2.0);
   const Vec3 u = randomUnit();
   Pose pa = randomPose(2.0), pb = randomPose(2.0);
@@ -35,7 +35,7 @@ TEST_CASE("gjk: two spheres are |x_A - x_B| - r_A - r_B apart along the line of 
   CHECK((d.point_b - (pb.x + rb * u)).norm() < 1e-12);
 }
 
-TEST_CASE("gjk: a box above a flat slab is as far as its lowest corner", "[lab04][pts=1]") {
+TEST_CASE("gjk: a box above a flat slab is as far as its lowest corner", "[lab04][pts=1][sec=8]") {
   // The slab's top face stands for a plane at height 0, wide enough that the box is above it.
   const Box slab(Vec3(20.0, 20.0, 0.5));
   Pose ps;
@@ -54,7 +54,7 @@ TEST_CASE("gjk: a box above a flat slab is as far as its lowest corner", "[lab04
   CHECK((d.point_a - d.point_b).norm() == Approx(d.distance).margin(1e-9));
 }
 
-TEST_CASE("gjk: a point (a sphere's centre) is as far from a box as its clamped copy", "[lab04][pts=1]") {
+TEST_CASE("gjk: a point (a sphere's centre) is as far from a box as its clamped copy", "[lab04][pts=1][sec=8]") {
   for (int trial = 0; trial < 20; ++trial) {
     const Box box(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
     const Pose pb = randomPose(1.0);
@@ -73,7 +73,7 @@ TEST_CASE("gjk: a point (a sphere's centre) is as far from a box as its clamped 
   }
 }
 
-TEST_CASE("gjk: random convex pairs are no farther apart than any two sampled surface points", "[lab04][pts=2]") {
+TEST_CASE("gjk: random convex pairs are no farther apart than any two sampled surface points", "[lab04][pts=2][sec=8]") {
   const Kind kinds[] = {Kind::Sphere, Kind::Box, Kind::Capsule, Kind::Tetrahedron};
   for (Kind ka : kinds) {
     for (Kind kb : kinds) {
@@ -104,7 +104,7 @@ TEST_CASE("gjk: random convex pairs are no farther apart than any two sampled su
   }
 }
 
-TEST_CASE("gjk: polyhedra a hair apart, faces parallel, are never reported overlapping", "[lab04][pts=1]") {
+TEST_CASE("gjk: polyhedra a hair apart, faces parallel, are never reported overlapping", "[lab04][pts=1][sec=8]") {
   // Face against face gives simplices whose new vertex lies in the plane of the others (a flat
   // tetrahedron): its side tests are round-off, and a GJK that trusts them claims contact.
   int trials = 0;
@@ -127,7 +127,7 @@ TEST_CASE("gjk: polyhedra a hair apart, faces parallel, are never reported overl
   CHECK(trials == 800);
 }
 
-TEST_CASE("gjk: overlapping shapes are reported as overlapping", "[lab04][pts=1]") {
+TEST_CASE("gjk: overlapping shapes are reported as overlapping", "[lab04][pts=1][sec=8]") {
   const Kind kinds[] = {Kind::Sphere, Kind::Box, Kind::Capsule, Kind::Tetrahedron};
   for (Kind ka : kinds) {
     for (Kind kb : kinds) {

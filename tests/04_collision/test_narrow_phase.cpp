@@ -59,7 +59,7 @@ const ContactPoint* findId(const Manifold& m, std::uint32_t id) {
 
 }  // namespace
 
-TEST_CASE("narrow phase: shapes apart by any margin have no contact", "[lab04][pts=2]") {
+TEST_CASE("narrow phase: shapes apart by any margin have no contact", "[lab04][pts=2][sec=2][sec=3][sec=4][sec=5]") {
   for (const auto& [ka, kb] : kPairs) {
     for (int trial = 0; trial < 50; ++trial) {
       // Gaps from 1e-4 m to 0.5 m, log-uniform: the small ones catch an inclusive test at d > 0.
@@ -70,7 +70,7 @@ TEST_CASE("narrow phase: shapes apart by any margin have no contact", "[lab04][p
   }
 }
 
-TEST_CASE("narrow phase: swapping A and B flips the normal and keeps depths and points", "[lab04][pts=2]") {
+TEST_CASE("narrow phase: swapping A and B flips the normal and keeps depths and points", "[lab04][pts=2][sec=2][sec=3][sec=4][sec=5]") {
   for (Kind k : {Kind::Sphere, Kind::Capsule, Kind::Box, Kind::Tetrahedron}) {
     int touching = 0;
     for (int trial = 0; trial < 50; ++trial) {
@@ -96,7 +96,7 @@ TEST_CASE("narrow phase: swapping A and B flips the normal and keeps depths and 
   }
 }
 
-TEST_CASE("narrow phase: a rigid motion of the whole configuration moves the manifold with it", "[lab04][pts=2]") {
+TEST_CASE("narrow phase: a rigid motion of the whole configuration moves the manifold with it", "[lab04][pts=2][sec=2][sec=3][sec=4][sec=5]") {
   for (const auto& [ka, kb] : kPairs) {
     for (int trial = 0; trial < 30; ++trial) {
       const Config c = randomConfig(ka, kb, uniform(0.01, 0.2));
@@ -119,7 +119,7 @@ TEST_CASE("narrow phase: a rigid motion of the whole configuration moves the man
   }
 }
 
-TEST_CASE("narrow phase: every contact lies on or inside both shapes within its depth", "[lab04][pts=2]") {
+TEST_CASE("narrow phase: every contact lies on or inside both shapes within its depth", "[lab04][pts=2][sec=2][sec=3][sec=4][sec=5]") {
   for (const auto& [ka, kb] : kPairs) {
     int touching = 0;
     for (int trial = 0; trial < 50; ++trial) {
@@ -145,58 +145,77 @@ TEST_CASE("narrow phase: every contact lies on or inside both shapes within its 
   }
 }
 
-TEST_CASE("narrow phase: sphere pairs give the closed-form depth, normal and point", "[lab04][pts=2]") {
+TEST_CASE("narrow phase: collideSphereSphere gives the closed-form depth, normal and point", "[lab04][pts=1][sec=2]") {
   const double ra = uniform(0.2, 1.0), rb = uniform(0.2, 1.0), overlap = uniform(0.01, 0.19);
   const Vec3 u = randomUnit();
   Pose pa, pb;
   pb.x = randomVec3(2.0);
   pa.x = pb.x + (ra + rb - overlap) * u;
+  INFO("spheres of radii " << ra << " and " << rb << " overlapping by " << overlap);
   const Manifold ss = collideSphereSphere(Sphere(ra), pa, Sphere(rb), pb);
   REQUIRE(ss.count == 1);
   // Closed forms evaluated in another order: round-off only.
   CHECK(ss.points[0].depth == Approx(overlap).margin(1e-12));
   CHECK((ss.normal - u).norm() < 1e-12);
   CHECK((ss.points[0].position - (pb.x + (rb - 0.5 * overlap) * u)).norm() < 1e-12);
+}
 
-  const double d = uniform(-1.0, 1.0);
+TEST_CASE("narrow phase: collideSpherePlane gives the closed-form depth, normal and point", "[lab04][pts=1][sec=2]") {
+  const double ra = uniform(0.2, 1.0), overlap = uniform(0.01, 0.19), d = uniform(-1.0, 1.0);
+  const Vec3 u = randomUnit();
   const Plane ground(u, d);
+  Pose pa;
   pa.x = randomVec3(2.0);
   pa.x += (d + ra - overlap - u.dot(pa.x)) * u;  // the centre at height r - overlap
+  INFO("a sphere of radius " << ra << " sunk " << overlap << " into the plane");
   const Manifold sp = collideSpherePlane(Sphere(ra), pa, ground);
   REQUIRE(sp.count == 1);
   CHECK(sp.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
   CHECK((sp.normal - u).norm() < 1e-12);
   CHECK((sp.points[0].position - (pa.x - (ra - 0.5 * overlap) * u)).norm() < 1e-12);
+}
 
+TEST_CASE("narrow phase: collideCapsuleSphere beside the core's middle gives the perpendicular depth and normal", "[lab04][pts=1][sec=3]") {
   // A sphere beside the middle of a capsule's core: the distance to the core is perpendicular.
+  const double rb = uniform(0.2, 1.0), overlap = uniform(0.01, 0.19);
   const Capsule capsule(uniform(0.1, 0.5), uniform(0.5, 1.0));
-  Pose pc = randomPose(1.0);
+  const Pose pc = randomPose(1.0);
   const Vec3 axis = pc.q * Vec3::UnitZ();
   const Vec3 side = axis.cross(randomUnit()).normalized();
   const Vec3 core = pc.x + uniform(-0.4, 0.4) * axis;
+  Pose pb;
   pb.x = core - (capsule.radius + rb - overlap) * side;
+  INFO("a sphere of radius " << rb << " overlapping a capsule of radius " << capsule.radius << " by " << overlap);
   const Manifold cs = collideCapsuleSphere(capsule, pc, Sphere(rb), pb);
   REQUIRE(cs.count == 1);
   CHECK(cs.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
   CHECK((cs.normal - side).norm() < 1e-12);
+}
 
+TEST_CASE("narrow phase: collideSphereBox over a face and off a corner gives the closed-form depth and normal", "[lab04][pts=1][sec=2]") {
   // A sphere over a face of a box, and one off a corner (closest point = the corner).
+  const double ra = uniform(0.2, 1.0), overlap = uniform(0.01, 0.19);
   const Box box(Vec3(uniform(0.3, 1.0), uniform(0.3, 1.0), uniform(0.3, 1.0)));
   const Pose pbox = randomPose(1.0);
+  Pose pa;
   pa.x = pbox.toWorld(Vec3(uniform(-0.2, 0.2), uniform(-0.2, 0.2), box.half_extents.z() + ra - overlap));
-  const Manifold face = collideSphereBox(Sphere(ra), pa, box, pbox);
-  REQUIRE(face.count == 1);
-  CHECK(face.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
-  CHECK((face.normal - pbox.q * Vec3::UnitZ()).norm() < 1e-12);
+  {
+    INFO("over the +z face, sunk " << overlap);
+    const Manifold face = collideSphereBox(Sphere(ra), pa, box, pbox);
+    REQUIRE(face.count == 1);
+    CHECK(face.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
+    CHECK((face.normal - pbox.q * Vec3::UnitZ()).norm() < 1e-12);
+  }
   const Vec3 diagonal = Vec3(1, 1, 1).normalized();
   pa.x = pbox.toWorld(box.half_extents + (ra - overlap) * diagonal);
+  INFO("off the (+x, +y, +z) corner, sunk " << overlap);
   const Manifold corner = collideSphereBox(Sphere(ra), pa, box, pbox);
   REQUIRE(corner.count == 1);
   CHECK(corner.points[0].depth == Approx(overlap).margin(1e-12));  // round-off only
   CHECK((corner.normal - pbox.q * diagonal).norm() < 1e-12);
 }
 
-TEST_CASE("narrow phase: a sphere whose centre is inside a box leaves through the nearest face", "[lab04][pts=1]") {
+TEST_CASE("narrow phase: a sphere whose centre is inside a box leaves through the nearest face", "[lab04][pts=1][sec=2]") {
   // Every face in turn, on every run: the nearest face is on the - side as often as on the + side.
   const Box box(Vec3(0.5, 0.7, 0.9));
   const Pose pbox = randomPose(1.0);
@@ -226,7 +245,7 @@ TEST_CASE("narrow phase: a sphere whose centre is inside a box leaves through th
   }
 }
 
-TEST_CASE("narrow phase: shapes touching at depth exactly 0 have contacts of depth 0", "[lab04][pts=1]") {
+TEST_CASE("narrow phase: shapes touching at depth exactly 0 have contacts of depth 0", "[lab04][pts=1][sec=2][sec=3][sec=4][sec=5]") {
   // Touching is not apart: each routine must report the contact, with depth 0. Every number
   // below is a binary fraction and the poses are unrotated, so the depths are exactly 0.
   const Vec3 shift(uniform(-0.25, 0.25), uniform(-0.25, 0.25), 0.0);  // slides along the contact plane
@@ -282,7 +301,7 @@ TEST_CASE("narrow phase: shapes touching at depth exactly 0 have contacts of dep
   }
 }
 
-TEST_CASE("narrow phase: spheres with coincident centres separate along +z", "[lab04][pts=1]") {
+TEST_CASE("narrow phase: spheres with coincident centres separate along +z", "[lab04][pts=1][sec=2]") {
   // The line of centres is undefined: the documented fallback is +z, and the depth is then the
   // sum of the radii. A's deepest point c - r_A e_z and B's c + r_B e_z have their midpoint at
   // c + (r_B - r_A)/2 e_z.
@@ -296,7 +315,7 @@ TEST_CASE("narrow phase: spheres with coincident centres separate along +z", "[l
   CHECK((m.points[0].position - (pa.x + 0.5 * (rb - ra) * Vec3::UnitZ())).norm() < 1e-12);  // round-off only
 }
 
-TEST_CASE("narrow phase: crossed capsules touch at one point between their cores, normal from B to A", "[lab04][pts=1]") {
+TEST_CASE("narrow phase: crossed capsules touch at one point between their cores, normal from B to A", "[lab04][pts=1][sec=3]") {
   for (int trial = 0; trial < 20; ++trial) {
     // In a frame F: B's core along x through the origin, A's core at height H = r_A + r_B - overlap,
     // at an angle phi to B's in the horizontal plane, crossing above (px, 0). The closest points
@@ -323,7 +342,7 @@ TEST_CASE("narrow phase: crossed capsules touch at one point between their cores
   }
 }
 
-TEST_CASE("narrow phase: parallel capsules touch at both ends of their overlap, either way round and overhanging", "[lab04][pts=1]") {
+TEST_CASE("narrow phase: parallel capsules touch at both ends of their overlap, either way round and overhanging", "[lab04][pts=1][sec=3]") {
   // Cores along z, side by side along x, overlapping by 1/16 m; one core longer than the other,
   // so the longer one overhangs at both ends, and B either way up (a half turn about x swaps its
   // ends). The overlap of the cores is the shorter core: the contacts are at its two ends.
@@ -355,7 +374,7 @@ TEST_CASE("narrow phase: parallel capsules touch at both ends of their overlap, 
   }
 }
 
-TEST_CASE("closest points of segments: a segment reduced to a point", "[lab04][pts=1]") {
+TEST_CASE("closest points of segments: a segment reduced to a point", "[lab04][pts=1][sec=3]") {
   // The parameters must lie in [0, 1] and give the closest points; a single point has one
   // parameter that does not matter, but it must still be a number in [0, 1].
   const Vec3 p(-1.0, 0.0, 0.0), q(1.0, 0.0, 0.0);  // a segment along x
@@ -384,7 +403,7 @@ TEST_CASE("closest points of segments: a segment reduced to a point", "[lab04][p
   CHECK(in01(points[1]));
 }
 
-TEST_CASE("narrow phase: a box resting on a plane touches at its 4 bottom corners", "[lab04][pts=2]") {
+TEST_CASE("narrow phase: a box resting on a plane touches at its 4 bottom corners", "[lab04][pts=2][sec=4]") {
   const Vec3 n = randomUnit();
   const double d = uniform(-1.0, 1.0), overlap = uniform(0.001, 0.1);
   const Box box(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
@@ -405,7 +424,7 @@ TEST_CASE("narrow phase: a box resting on a plane touches at its 4 bottom corner
   }
 }
 
-TEST_CASE("narrow phase: triangles intersect exactly when an edge pierces the other", "[lab04][pts=2]") {
+TEST_CASE("narrow phase: triangles intersect exactly when an edge pierces the other", "[lab04][pts=2][sec=7]") {
   for (int trial = 0; trial < 200; ++trial) {
     const Triangle t1(randomVec3(1.0), randomVec3(1.0), randomVec3(1.0));
     const Vec3 &a = t1.corners[0], &b = t1.corners[1], &c = t1.corners[2];

@@ -44,7 +44,7 @@ SpherePair approachingSpheres(double h) {
 
 }  // namespace
 
-TEST_CASE("toi: two spheres on straight lines touch at the analytic time", "[lab04][pts=2]") {
+TEST_CASE("toi: two spheres on straight lines touch at the analytic time", "[lab04][pts=2][sec=9]") {
   const double h = 1.0 / 60, tol = 1e-6;
   for (int trial = 0; trial < 20; ++trial) {
     const SpherePair s = approachingSpheres(h);
@@ -65,7 +65,7 @@ TEST_CASE("toi: two spheres on straight lines touch at the analytic time", "[lab
   }
 }
 
-TEST_CASE("toi: spheres that pass each other or meet after the step report no contact", "[lab04][pts=1]") {
+TEST_CASE("toi: spheres that pass each other or meet after the step report no contact", "[lab04][pts=1][sec=9]") {
   const double h = 1.0 / 60;
   SpherePair late = approachingSpheres(h);
   // Start them farther back along their paths: contact at 1.5 h to 3 h.
@@ -89,7 +89,7 @@ TEST_CASE("toi: spheres that pass each other or meet after the step report no co
   }
 }
 
-TEST_CASE("toi: a step or tolerance that is not positive is refused by name", "[lab04][pts=1]") {
+TEST_CASE("toi: a step or tolerance that is not positive is refused by name", "[lab04][pts=1][sec=9]") {
   // Two spheres at rest far apart: with valid arguments no contact, and a method that forgets a
   // check returns normally here instead of looping on a bracket it can never shrink.
   const Pose pa = randomPose(1.0);
@@ -114,7 +114,7 @@ TEST_CASE("toi: a step or tolerance that is not positive is refused by name", "[
   }
 }
 
-TEST_CASE("toi: a pair already overlapping at the start is hit at time 0, after one query", "[lab04][pts=1]") {
+TEST_CASE("toi: a pair already overlapping at the start is hit at time 0, after one query", "[lab04][pts=1][sec=9]") {
   // Two spheres overlapping at t = 0 and flying apart fast enough to separate within the step:
   // the first contact is at 0, and the one test (or distance query) at t = 0 shows it.
   const double h = 1.0 / 60, tol = 1e-6;
@@ -135,7 +135,7 @@ TEST_CASE("toi: a pair already overlapping at the start is hit at time 0, after 
   }
 }
 
-TEST_CASE("toi: a contact exactly at the end of the step is a hit", "[lab04][pts=1]") {
+TEST_CASE("toi: a contact exactly at the end of the step is a hit", "[lab04][pts=1][sec=9]") {
   // Spheres of radius 1/4, 1/4 m apart, closing at 2 m/s: they touch at t = 1/8 s = h exactly
   // (binary fractions: the positions advance() gives at 1/8 s are exact). The step is [0, h].
   const double h = 0.125, tol = 1e-6;
@@ -154,7 +154,7 @@ TEST_CASE("toi: a contact exactly at the end of the step is a hit", "[lab04][pts
   }
 }
 
-TEST_CASE("toi: queries counts every overlap test and distance query made", "[lab04][pts=1]") {
+TEST_CASE("toi: queries counts every overlap test and distance query made", "[lab04][pts=1][sec=9]") {
   const double tol = 1e-6;
   // At rest, apart: the speed bound is 0, so bisection samples the step once (N = 1, tests at 0
   // and h) and advancement stops after its first distance query (no approach at all).
@@ -200,7 +200,7 @@ TEST_CASE("toi: queries counts every overlap test and distance query made", "[la
   }
 }
 
-TEST_CASE("toi: a spinning box falling on a plane is caught at its first touch", "[lab04][pts=2]") {
+TEST_CASE("toi: a spinning box falling on a plane is caught at its first touch", "[lab04][pts=2][sec=9]") {
   const double h = 0.1, tol = 1e-6;
   const Box box(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
   const Plane ground(Vec3::UnitZ(), 0.0);
@@ -234,7 +234,7 @@ TEST_CASE("toi: a spinning box falling on a plane is caught at its first touch",
   }
 }
 
-TEST_CASE("toi: a box spinning in place is caught when its edge first dips to the plane", "[lab04][pts=1]") {
+TEST_CASE("toi: a box spinning in place is caught when its edge first dips to the plane", "[lab04][pts=1][sec=9]") {
   // No linear motion at all: only the spin brings the box down, so a speed bound without the
   // spin term sees nothing coming. Turned by theta about its x axis, the box reaches
   // r(theta) = h_y |sin theta| + h_z |cos theta| below its centre, rising from h_z at theta = 0 to
@@ -271,12 +271,12 @@ TEST_CASE("toi: a box spinning in place is caught when its edge first dips to th
   }
 }
 
-TEST_CASE("toi: a fast body is caught at a thin wall that a check at the step's end misses", "[lab04][pts=2]") {
+TEST_CASE("toi: a fast body is caught at a thin wall that a check at the step's end misses", "[lab04][pts=2][sec=9]") {
   const double speed = uniform(200.0, 400.0), h = 1.0 / 60, tol = 1e-6;
   const std::vector<CollisionBody> scene = bulletAndWall(speed);
   const CollisionBody &wall = scene[0], &bullet = scene[1];
   // At the end of the step the bullet is metres past the wall: the discrete check sees nothing.
-  REQUIRE(collide(bullet.shape, advance(bullet.pose, bullet.motion, h), wall.shape, wall.pose).empty());
+  REQUIRE_FALSE(distance(bullet.shape, advance(bullet.pose, bullet.motion, h), wall.shape, wall.pose).overlap);
   const double t_contact = (1.0 - 0.01 - 0.05) / speed;  // 1 m to go, less wall and bullet half widths
   for (int k = 0; k < 2; ++k) {
     const ToiResult r = kMethods[k](bullet.shape, bullet.pose, bullet.motion, wall.shape, wall.pose, wall.motion, h, tol);
@@ -287,7 +287,7 @@ TEST_CASE("toi: a fast body is caught at a thin wall that a check at the step's 
   }
 }
 
-TEST_CASE("toi: conservative advancement needs fewer distance queries than bisection needs overlap tests", "[lab04][pts=1]") {
+TEST_CASE("toi: conservative advancement needs fewer distance queries than bisection needs overlap tests", "[lab04][pts=1][sec=9]") {
   const double h = 1.0 / 60;
   for (double tol : {1e-3, 1e-6, 1e-9}) {
     const SpherePair s = approachingSpheres(h);

@@ -10,7 +10,7 @@ using namespace physlab;
 using namespace physlab::test;
 using Catch::Matchers::Contains;
 
-TEST_CASE("particle-plane: the normal velocity reverses and shrinks by epsilon, the tangential stays", "[lab05][pts=1]") {
+TEST_CASE("particle-plane: the normal velocity reverses and shrinks by epsilon, the tangential stays", "[lab05][pts=1][sec=1]") {
   const double m = uniform(0.1, 10.0), epsilon = uniform(0.0, 1.0);
   const Vec3 n = randomVec3(1.0).normalized();
   Vec3 v = randomVec3(5.0);
@@ -29,7 +29,7 @@ TEST_CASE("particle-plane: the normal velocity reverses and shrinks by epsilon, 
   CHECK(particlePlaneResponse(m, grazing, Vec3::UnitZ(), epsilon) == grazing);
 }
 
-TEST_CASE("rigid impulse: the world inverse inertia is R I_body^-1 R^T", "[lab05][pts=1]") {
+TEST_CASE("rigid impulse: the world inverse inertia is R I_body^-1 R^T", "[lab05][pts=1][sec=2]") {
   const Mat3 I_body = randomInertiaTensor();
   const Quat q(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));  // not unit length
   const Mat3 R = q.normalized().toRotationMatrix();
@@ -45,7 +45,7 @@ TEST_CASE("rigid impulse: the world inverse inertia is R I_body^-1 R^T", "[lab05
   CHECK((inverseInertiaWorld(Vec3(1.0, 3.0, 5.0).asDiagonal(), q45) - expected).norm() <= 1e-14);
 }
 
-TEST_CASE("rigid impulse: j equals the lecture's closed form", "[lab05][pts=2]") {
+TEST_CASE("rigid impulse: j equals the lecture's closed form", "[lab05][pts=2][sec=2]") {
   const RandomPair s = randomPair();
   const double epsilon = uniform(0.0, 1.0);
   const Vec3 r_a = s.p - s.A.x, r_b = s.p - s.B.x, n = s.n;
@@ -66,7 +66,7 @@ TEST_CASE("rigid impulse: j equals the lecture's closed form", "[lab05][pts=2]")
   CHECK(impulseMagnitude(leaving.A, leaving.B, leaving.p, leaving.n, epsilon) == Approx(-j).epsilon(1e-10));  // round-off only
 }
 
-TEST_CASE("rigid impulse: linear and angular momentum of the pair are conserved", "[lab05][pts=2]") {
+TEST_CASE("rigid impulse: linear and angular momentum of the pair are conserved", "[lab05][pts=2][sec=2][sec=3]") {
   RandomPair s = randomPair();
   const Vec3 P0 = linearMomentum(s), L0 = angularMomentum(s);
   const double j = impulseMagnitude(s.A, s.B, s.p, s.n, uniform(0.0, 1.0));
@@ -77,7 +77,7 @@ TEST_CASE("rigid impulse: linear and angular momentum of the pair are conserved"
   CHECK((angularMomentum(s) - L0).norm() <= 1e-11 * (1.0 + L0.norm() + j));
 }
 
-TEST_CASE("rigid impulse: the relative normal velocity after is -epsilon times before", "[lab05][pts=2]") {
+TEST_CASE("rigid impulse: the relative normal velocity after is -epsilon times before", "[lab05][pts=2][sec=2][sec=3]") {
   RandomPair s = randomPair();
   const double epsilon = uniform(0.0, 1.0), before = vRel(s);
   applyImpulse(s.A, s.B, s.p, impulseMagnitude(s.A, s.B, s.p, s.n, epsilon) * s.n);
@@ -85,7 +85,7 @@ TEST_CASE("rigid impulse: the relative normal velocity after is -epsilon times b
   CHECK(vRel(s) == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
 }
 
-TEST_CASE("rigid impulse: kinetic energy never increases, and is conserved for epsilon = 1", "[lab05][pts=2]") {
+TEST_CASE("rigid impulse: kinetic energy never increases, and is conserved for epsilon = 1", "[lab05][pts=2][sec=2][sec=3]") {
   RandomPair s = randomPair();
   RandomPair elastic = s;
   const double E0 = kineticEnergy(s), epsilon = uniform(0.0, 1.0);
@@ -97,7 +97,7 @@ TEST_CASE("rigid impulse: kinetic energy never increases, and is conserved for e
   CHECK(kineticEnergy(elastic) == Approx(E0).epsilon(1e-11));
 }
 
-TEST_CASE("rigid impulse: a fixed body takes no momentum and the other bounces with -epsilon v_n", "[lab05][pts=1]") {
+TEST_CASE("rigid impulse: a fixed body takes no momentum and the other bounces with -epsilon v_n", "[lab05][pts=1][sec=2][sec=3]") {
   RandomPair s = randomPair(true);
   const double epsilon = uniform(0.0, 1.0), before = vRel(s);
   applyImpulse(s.A, s.B, s.p, impulseMagnitude(s.A, s.B, s.p, s.n, epsilon) * s.n);
@@ -108,7 +108,7 @@ TEST_CASE("rigid impulse: a fixed body takes no momentum and the other bounces w
   CHECK(vRel(s) == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
 }
 
-TEST_CASE("friction: below mu j the contact sticks, above it slides with |j_t| = mu j", "[lab05][pts=1]") {
+TEST_CASE("friction: below mu j the contact sticks, above it slides with |j_t| = mu j", "[lab05][pts=1][sec=4]") {
   // A sphere on the fixed ground: touching point below its centre
   const double m = uniform(0.5, 5.0), r = uniform(0.05, 0.5);
   ContactBody A, ground;
@@ -144,7 +144,7 @@ TEST_CASE("friction: below mu j the contact sticks, above it slides with |j_t| =
   CHECK(frictionImpulse(falling, ground, p, n, std::numeric_limits<double>::infinity()) == Vec3::Zero());
 }
 
-TEST_CASE("friction: the impulse opposes the tangential slip, stopping it along t or of length j_max", "[lab05][pts=2]") {
+TEST_CASE("friction: the impulse opposes the tangential slip, stopping it along t or of length j_max", "[lab05][pts=2][sec=4]") {
   // Two moving bodies with random inertias: K along t has every rotational term
   const RandomPair s = approachingPair();
   const Vec3 v = oracleRelativeVelocity(s.A, s.B, s.p), v_t = v - v.dot(s.n) * s.n;
@@ -165,7 +165,7 @@ TEST_CASE("friction: the impulse opposes the tangential slip, stopping it along 
   CHECK((J_slide + j_max * t).norm() <= 1e-10 * j_max);  // round-off only
 }
 
-TEST_CASE("penalty: the force is max(0, k depth - d v_rel) along n, never pulling", "[lab05][pts=1]") {
+TEST_CASE("penalty: the force is max(0, k depth - d v_rel) along n, never pulling", "[lab05][pts=1][sec=7]") {
   const double k = std::pow(10.0, uniform(3.0, 5.0)), d = uniform(1.0, 100.0), depth = uniform(1e-4, 1e-2);
   const Vec3 n = randomVec3(1.0).normalized();
   const double spring = k * depth;
@@ -202,7 +202,7 @@ bool sameBody(const ContactBody& X, const ContactBody& Y) {
 
 }  // namespace
 
-TEST_CASE("particle-plane: bad input is refused naming it; epsilon exactly 0 and 1 and a normal off by round-off are allowed", "[lab05][pts=1]") {
+TEST_CASE("particle-plane: bad input is refused naming it; epsilon exactly 0 and 1 and a normal off by round-off are allowed", "[lab05][pts=1][sec=1]") {
   const double m = uniform(0.1, 10.0);
   const Vec3 n = randomVec3(1.0).normalized();
   Vec3 v = randomVec3(2.0);
@@ -232,7 +232,7 @@ TEST_CASE("particle-plane: bad input is refused naming it; epsilon exactly 0 and
   CHECK_THROWS_WITH(particlePlaneResponse(m, Vec3(0.0, kInf, -1.0), n, 0.5), Contains("v_minus"));
 }
 
-TEST_CASE("rigid impulse: bad input to the impulse functions is refused naming it, and applyImpulse then changes neither body", "[lab05][pts=2]") {
+TEST_CASE("rigid impulse: bad input to the impulse functions is refused naming it, and applyImpulse then changes neither body", "[lab05][pts=2][sec=2]") {
   const RandomPair s = randomPair(), fixed = randomPair(true);
   // Valid: the ends of epsilon, a fixed B (inverse mass exactly 0), a normal off by round-off
   const double j = impulseMagnitude(s.A, s.B, s.p, s.n, 0.0);
@@ -291,7 +291,7 @@ TEST_CASE("rigid impulse: bad input to the impulse functions is refused naming i
   CHECK_THROWS_WITH(inverseInertiaWorld(bad_inertia, Quat::Identity()), Contains("I_body_inv"));
 }
 
-TEST_CASE("friction: a normal that is not unit and a negative or NaN j_max are refused; j_max = 0 and +infinity are allowed", "[lab05][pts=1]") {
+TEST_CASE("friction: a normal that is not unit and a negative or NaN j_max are refused; j_max = 0 and +infinity are allowed", "[lab05][pts=1][sec=4]") {
   const RandomPair s = randomPair();
   // +infinity is "no bound" (the solvers pass it), 0 is "no friction": both valid
   const Vec3 unbounded = frictionImpulse(s.A, s.B, s.p, s.n, kInf);
@@ -310,7 +310,7 @@ TEST_CASE("friction: a normal that is not unit and a negative or NaN j_max are r
   }
 }
 
-TEST_CASE("penalty: a negative depth, stiffness or damping, a NaN velocity and a normal that is not unit are refused", "[lab05][pts=1]") {
+TEST_CASE("penalty: a negative depth, stiffness or damping, a NaN velocity and a normal that is not unit are refused", "[lab05][pts=1][sec=7]") {
   const double k = std::pow(10.0, uniform(3.0, 5.0)), d = uniform(1.0, 100.0), depth = uniform(1e-4, 1e-2);
   const Vec3 n = randomVec3(1.0).normalized();
   // The ends: just touching (depth 0), no damper (d = 0), a normal off by round-off

@@ -73,7 +73,7 @@ double vRelAt(const BoxOnGround& s, const Contact& c) {
 
 }  // namespace
 
-TEST_CASE("sequential impulses: frictionless, afterwards no point approaches and no energy is gained", "[lab05][pts=1]") {
+TEST_CASE("sequential impulses: frictionless, afterwards no point approaches and no energy is gained", "[lab05][pts=1][sec=5]") {
   const double epsilon = uniform(0.0, 1.0);
   BoxOnGround s = boxOnGround(epsilon, 0.0);
   REQUIRE(s.contacts.size() >= 1);
@@ -94,7 +94,7 @@ TEST_CASE("sequential impulses: frictionless, afterwards no point approaches and
   CHECK(s.bodies[1].v == Vec3::Zero());  // the ground stays put: zero inverses (exactly)
 }
 
-TEST_CASE("sequential impulses: with friction, impulses stay in the cone and remove energy", "[lab05][pts=1]") {
+TEST_CASE("sequential impulses: with friction, impulses stay in the cone and remove energy", "[lab05][pts=1][sec=5]") {
   const double epsilon = uniform(0.0, 1.0), mu = uniform(0.1, 1.0);
   BoxOnGround s = boxOnGround(epsilon, mu);
   REQUIRE(s.contacts.size() >= 1);
@@ -115,7 +115,7 @@ TEST_CASE("sequential impulses: with friction, impulses stay in the cone and rem
   CHECK(kinetic(s) <= E0 * (1.0 + 1e-12));
 }
 
-TEST_CASE("simultaneous impulses: frictionless, they converge to v_rel >= 0 and warm starting reaches the same answer", "[lab05][pts=1]") {
+TEST_CASE("simultaneous impulses: frictionless, they converge to v_rel >= 0 and warm starting reaches the same answer", "[lab05][pts=1][sec=6]") {
   BoxOnGround s = boxOnGround(0.0, 0.0);
   REQUIRE(s.contacts.size() >= 1);
   Settings settings;
@@ -141,7 +141,7 @@ TEST_CASE("simultaneous impulses: frictionless, they converge to v_rel >= 0 and 
   CHECK((warm.bodies[0].v - s.bodies[0].v).norm() <= 1e-6);
 }
 
-TEST_CASE("simultaneous impulses: accumulated impulses stay clamped, j >= 0 and |j_t| <= mu j", "[lab05][pts=1]") {
+TEST_CASE("simultaneous impulses: accumulated impulses stay clamped, j >= 0 and |j_t| <= mu j", "[lab05][pts=1][sec=6]") {
   const double mu = uniform(0.1, 1.0);
   BoxOnGround s = boxOnGround(uniform(0.0, 1.0), mu);
   REQUIRE(s.contacts.size() >= 1);
@@ -245,14 +245,14 @@ void checkOneSweepOnOnePoint(ResponseMethod method, double fraction, bool warm) 
 
 }  // namespace
 
-TEST_CASE("sequential impulses: one sweep on one point is its warm start, its correction, then friction clamped to mu j", "[lab05][pts=2]") {
+TEST_CASE("sequential impulses: one sweep on one point is its warm start, its correction, then friction clamped to mu j", "[lab05][pts=2][sec=5]") {
   // Sliding (the bound is part of the stopping impulse) and sticking (it is more), cold and warm
   for (const double fraction : {uniform(0.2, 0.8), uniform(1.2, 3.0)}) {
     for (const bool warm : {false, true}) checkOneSweepOnOnePoint(ResponseMethod::Sequential, fraction, warm);
   }
 }
 
-TEST_CASE("sequential impulses: a point approaching slower than the restitution threshold does not bounce", "[lab05][pts=1]") {
+TEST_CASE("sequential impulses: a point approaching slower than the restitution threshold does not bounce", "[lab05][pts=1][sec=5]") {
   Settings settings;
   const double epsilon = uniform(0.5, 1.0);
   // Slower than the threshold: epsilon = 0, the point ends at v_rel = 0
@@ -277,7 +277,7 @@ TEST_CASE("sequential impulses: a point approaching slower than the restitution 
   CHECK(vRel(fast) == Approx(-epsilon * before).epsilon(1e-10));  // round-off only
 }
 
-TEST_CASE("sequential impulses: the warm start and the accumulated j, j_t account for every change of momentum", "[lab05][pts=1]") {
+TEST_CASE("sequential impulses: the warm start and the accumulated j, j_t account for every change of momentum", "[lab05][pts=1][sec=5]") {
   const double mu = uniform(0.1, 1.0);
   BoxOnGround s = boxOnGround(uniform(0.0, 1.0), mu);
   REQUIRE(s.contacts.size() >= 1);
@@ -308,14 +308,14 @@ TEST_CASE("sequential impulses: the warm start and the accumulated j, j_t accoun
   }
 }
 
-TEST_CASE("simultaneous impulses: one sweep on one point is its warm start, its correction, then its friction", "[lab05][pts=2]") {
+TEST_CASE("simultaneous impulses: one sweep on one point is its warm start, its correction, then its friction", "[lab05][pts=2][sec=6]") {
   // Sliding and sticking, cold and warm, as in the sequential test
   for (const double fraction : {uniform(0.2, 0.8), uniform(1.2, 3.0)}) {
     for (const bool warm : {false, true}) checkOneSweepOnOnePoint(ResponseMethod::Simultaneous, fraction, warm);
   }
 }
 
-TEST_CASE("simultaneous impulses: a point approaching slower than the restitution threshold does not bounce", "[lab05][pts=1]") {
+TEST_CASE("simultaneous impulses: a point approaching slower than the restitution threshold does not bounce", "[lab05][pts=1][sec=6]") {
   Settings settings;
   settings.method = ResponseMethod::Simultaneous;
   const double epsilon = uniform(0.5, 1.0);
@@ -341,7 +341,7 @@ TEST_CASE("simultaneous impulses: a point approaching slower than the restitutio
   CHECK(vRel(fast) == Approx(-epsilon * before).epsilon(1e-10));  // round-off only
 }
 
-TEST_CASE("simultaneous impulses: the warm start and the accumulated j, j_t account for every change of momentum", "[lab05][pts=1]") {
+TEST_CASE("simultaneous impulses: the warm start and the accumulated j, j_t account for every change of momentum", "[lab05][pts=1][sec=6]") {
   const double mu = uniform(0.1, 1.0);
   BoxOnGround s = boxOnGround(uniform(0.0, 1.0), mu);
   REQUIRE(s.contacts.size() >= 1);
@@ -373,7 +373,7 @@ TEST_CASE("simultaneous impulses: the warm start and the accumulated j, j_t acco
   }
 }
 
-TEST_CASE("simultaneous impulses: frictionless, a point that keeps an impulse ends at v_rel = 0 (complementarity)", "[lab05][pts=1]") {
+TEST_CASE("simultaneous impulses: frictionless, a point that keeps an impulse ends at v_rel = 0 (complementarity)", "[lab05][pts=1][sec=6]") {
   BoxOnGround s = boxOnGround(0.0, 0.0);
   REQUIRE(s.contacts.size() >= 1);
   Settings settings;
@@ -486,7 +486,7 @@ void checkSameSweeps(const BoxOnGround& student, const BoxOnGround& oracle) {
 
 }  // namespace
 
-TEST_CASE("sequential impulses: the first sweeps on a box are the contract's, point after point", "[lab05][pts=2]") {
+TEST_CASE("sequential impulses: the first sweeps on a box are the contract's, point after point", "[lab05][pts=2][sec=5]") {
   // From rest and from last step's impulses, as the simultaneous test below
   for (const bool warm : {false, true}) {
     const double mu = uniform(0.1, 1.0);
@@ -511,7 +511,7 @@ TEST_CASE("sequential impulses: the first sweeps on a box are the contract's, po
   }
 }
 
-TEST_CASE("simultaneous impulses: the first sweeps on a box are Jacobi's, with shares and clamps", "[lab05][pts=2]") {
+TEST_CASE("simultaneous impulses: the first sweeps on a box are Jacobi's, with shares and clamps", "[lab05][pts=2][sec=6]") {
   // From rest (every point's correction positive at first) and from last step's impulses
   for (const bool warm : {false, true}) {
     const double mu = uniform(0.1, 1.0);
@@ -594,7 +594,7 @@ void makeHeavier(RandomPair& s, double factor) {
 
 }  // namespace
 
-TEST_CASE("sequential and simultaneous impulses: one frictionless point takes one sweep and one quiet sweep", "[lab05][pts=1]") {
+TEST_CASE("sequential and simultaneous impulses: one frictionless point takes one sweep and one quiet sweep", "[lab05][pts=1][sec=5][sec=6]") {
   const RandomPair s = approachingPair();  // |v_rel| >= 0.3 m/s: above the restitution threshold
   const double epsilon = uniform(0.0, 1.0);
   INFO("v_rel " << vRel(s) << ", epsilon " << epsilon);
@@ -623,7 +623,7 @@ TEST_CASE("sequential and simultaneous impulses: one frictionless point takes on
   }
 }
 
-TEST_CASE("sequential and simultaneous impulses: the stopping rule measures velocity changes, friction included", "[lab05][pts=2]") {
+TEST_CASE("sequential and simultaneous impulses: the stopping rule measures velocity changes, friction included", "[lab05][pts=2][sec=5][sec=6]") {
   for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
     INFO(responseMethodName(method));
     auto solve = [method](std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, Settings settings) {
@@ -670,7 +670,7 @@ TEST_CASE("sequential and simultaneous impulses: the stopping rule measures velo
   }
 }
 
-TEST_CASE("sequential impulses: on a heavy box the sweeps stop when friction changes no sliding speed by more than the tolerance", "[lab05][pts=1]") {
+TEST_CASE("sequential impulses: on a heavy box the sweeps stop when friction changes no sliding speed by more than the tolerance", "[lab05][pts=1][sec=5]") {
   // The box is 1000 times heavier: friction's impulses (N s) are ~1000 times the sliding-speed
   // changes (m/s) they make, and only the latter is compared with the tolerance.
   BoxOnGround s = boxOnGround(uniform(0.0, 1.0), uniform(0.1, 1.0), 5e-4);  // flat: four points
@@ -689,7 +689,7 @@ TEST_CASE("sequential impulses: on a heavy box the sweeps stop when friction cha
   checkSameSweeps(s, oracle);
 }
 
-TEST_CASE("simultaneous impulses: the share counts each moving body's points, as A or as B, and none on the fixed ground", "[lab05][pts=1]") {
+TEST_CASE("simultaneous impulses: the share counts each moving body's points, as A or as B, and none on the fixed ground", "[lab05][pts=1][sec=6]") {
   // Bodies: 0 the fixed ground, 1 a flat box on it (A, four corners), 2 a sphere on the box (A,
   // with the box as B), 3 a sphere on the ground elsewhere (A). The box carries 5 points, each
   // sphere 1, the ground none that count (a fixed body takes no correction). Shares: 1/5 at the
@@ -806,7 +806,7 @@ const char* sideName(bool ground_as_a) { return ground_as_a ? "ground A, sphere 
 
 }  // namespace
 
-TEST_CASE("sequential and simultaneous impulses: with nothing approaching, no impulse and one quiet sweep, even at tolerance 0", "[lab05][pts=1]") {
+TEST_CASE("sequential and simultaneous impulses: with nothing approaching, no impulse and one quiet sweep, even at tolerance 0", "[lab05][pts=1][sec=5][sec=6]") {
   // Tolerance 0, the lower end of its range: only a point with v_rel < 0 approaches, and a solver
   // stops when nothing changes at all. At rest, leaving straight up (no slip, so friction has no
   // direction) and leaving while sliding (j stays 0, so the cone |j_t| <= mu j is a point).
@@ -835,7 +835,7 @@ TEST_CASE("sequential and simultaneous impulses: with nothing approaching, no im
   CHECK(s.bodies[0].v == Vec3(1.0, 0.0, -1.0));
 }
 
-TEST_CASE("sequential and simultaneous impulses: approaching at exactly the restitution threshold rests; a threshold of 0 bounces", "[lab05][pts=1]") {
+TEST_CASE("sequential and simultaneous impulses: approaching at exactly the restitution threshold rests; a threshold of 0 bounces", "[lab05][pts=1][sec=5][sec=6]") {
   // v_rel = -0.25 m/s exactly. With the threshold at 0.25 m/s the point is resting (|v_rel| <=
   // threshold, ContactKind): epsilon = 0, it stops. With 0, the lower end of the range, every
   // approach bounces: v_z = +epsilon 0.25 = 0.125 m/s. K = 1/m exactly (r parallel to n).
@@ -856,7 +856,7 @@ TEST_CASE("sequential and simultaneous impulses: approaching at exactly the rest
   }
 }
 
-TEST_CASE("sequential and simultaneous impulses: a sphere sliding onto the ground takes j and mu j by hand, as A or as B", "[lab05][pts=1]") {
+TEST_CASE("sequential and simultaneous impulses: a sphere sliding onto the ground takes j and mu j by hand, as A or as B", "[lab05][pts=1][sec=5][sec=6]") {
   // m = 2 kg, r = 0.2 m, I = 2/5 m r^2, arriving at v = (2, 0, -1) m/s without spin; epsilon 0.5,
   // mu 0.1. Normal: K = 1/m, j = (1 + epsilon) m 1 = 3 N s, v_z = +0.5. Friction: stopping the slip
   // of 2 m/s would take 2 / (7 / (2 m)) = 8/7 N s > mu j = 0.3 N s, so it slides: 0.3 N s against
@@ -882,7 +882,7 @@ TEST_CASE("sequential and simultaneous impulses: a sphere sliding onto the groun
   }
 }
 
-TEST_CASE("sequential and simultaneous impulses: the target comes from v_rel_minus, not from the velocity the solve starts with", "[lab05][pts=1]") {
+TEST_CASE("sequential and simultaneous impulses: the target comes from v_rel_minus, not from the velocity the solve starts with", "[lab05][pts=1][sec=5][sec=6]") {
   // The World classifies before gravity, so the point may approach faster (or slower) when the
   // solve starts than its v_rel_minus says. epsilon 0.5, K = 1/m = 0.5 exactly. By hand:
   //   v_rel- = -1,    v_z = -1.2: target +0.5 (not +0.6), j = 2 (0.5 + 1.2) = 3.4 N s
@@ -904,7 +904,7 @@ TEST_CASE("sequential and simultaneous impulses: the target comes from v_rel_min
   }
 }
 
-TEST_CASE("sequential and simultaneous impulses: a sweep changing velocities by exactly the tolerance is quiet; iterations bound the sweeps", "[lab05][pts=1]") {
+TEST_CASE("sequential and simultaneous impulses: a sweep changing velocities by exactly the tolerance is quiet; iterations bound the sweeps", "[lab05][pts=1][sec=5][sec=6]") {
   // v = (0, 0, -1) m/s, epsilon 0.5, K = 1/m = 0.5 exactly: the first sweep gives j = 3 N s, a
   // velocity change of exactly K j = 1.5 m/s. A tolerance of 1.5 (its upper end: "no more than")
   // stops after that sweep; just below it a second, quiet sweep follows. With iterations = 1 and
@@ -947,7 +947,7 @@ bool unchanged(const BoxOnGround& before, const BoxOnGround& after) {
 
 }  // namespace
 
-TEST_CASE("sequential and simultaneous impulses: bad bodies and contacts are refused naming them, before anything changes", "[lab05][pts=2]") {
+TEST_CASE("sequential and simultaneous impulses: bad bodies and contacts are refused naming them, before anything changes", "[lab05][pts=2][sec=5][sec=6]") {
   // The box with friction and a warm start, the ground last: bodies 0 (box), 1 (a spare sphere
   // far away) and 2 (ground), so the contacts use the first and the last index
   BoxOnGround base = boxOnGround(0.5, 0.4);

@@ -57,7 +57,7 @@ std::vector<double> cradleAfter(int n, double v0, ResponseMethod method) {
 
 }  // namespace
 
-TEST_CASE("bouncing ball: apex heights fall by epsilon^2", "[lab05][pts=2]") {
+TEST_CASE("bouncing ball: apex heights fall by epsilon^2", "[lab05][pts=2][sec=2][sec=3][sec=4][sec=5]") {
   const double epsilon = uniform(0.6, 0.9), H = uniform(0.5, 1.5), h = 1e-4;
   World world(bouncingBall(H, epsilon));
   const std::vector<double> apexes = apexHeights(world, h, 0.1, 3);
@@ -72,7 +72,7 @@ TEST_CASE("bouncing ball: apex heights fall by epsilon^2", "[lab05][pts=2]") {
   }
 }
 
-TEST_CASE("Newton's cradle: sequential impulses reach the velocity-level LCP answer, not the cradle", "[lab05][pts=2]") {
+TEST_CASE("Newton's cradle: sequential impulses reach the velocity-level LCP answer, not the cradle", "[lab05][pts=2][sec=2][sec=3][sec=4][sec=5]") {
   // n touching balls of 1 kg, epsilon 1: the first contact approaches at v0 and aims at +v0, the
   // others touch at rest and aim at 0 (targets decided before the solve). The one answer with
   // j >= 0 everywhere: ball 1 at (2 - n)/n v0, the others together at 2 v0/n. Momentum and energy
@@ -99,7 +99,7 @@ TEST_CASE("Newton's cradle: sequential impulses reach the velocity-level LCP ans
   CHECK(two[1] == Approx(v0).epsilon(1e-12));
 }
 
-TEST_CASE("Newton's cradle: simultaneous (Jacobi) impulses with enough sweeps reach the same velocities", "[lab05][pts=1]") {
+TEST_CASE("Newton's cradle: simultaneous (Jacobi) impulses with enough sweeps reach the same velocities", "[lab05][pts=1][sec=2][sec=3][sec=4][sec=6]") {
   const int n = static_cast<int>(uniform(3, 7));
   const double v0 = uniform(0.5, 3.0);
   const std::vector<double> sequential = cradleAfter(n, v0, ResponseMethod::Sequential);
@@ -111,7 +111,7 @@ TEST_CASE("Newton's cradle: simultaneous (Jacobi) impulses with enough sweeps re
   CHECK(simultaneous.front() == Approx((2.0 - n) / n * v0).margin(1e-6 * v0));
 }
 
-TEST_CASE("friction: a box sliding on the ground decelerates at mu g and stops after v0^2/(2 mu g)", "[lab05][pts=2]") {
+TEST_CASE("friction: a box sliding on the ground decelerates at mu g and stops after v0^2/(2 mu g)", "[lab05][pts=2][sec=2][sec=3][sec=4][sec=5]") {
   const double v0 = uniform(1.0, 3.0), mu = uniform(0.2, 0.6), h = 1e-3;
   World world(slidingBox(v0, mu));
   const double t_stop = v0 / (mu * kG), d_stop = v0 * v0 / (2 * mu * kG);
@@ -128,7 +128,7 @@ TEST_CASE("friction: a box sliding on the ground decelerates at mu g and stops a
   CHECK(world.states()[1].x.x() == Approx(d_stop).margin(3 * v0 * h));
 }
 
-TEST_CASE("friction: a sphere thrown without spin rolls without slipping at 5/7 v0", "[lab05][pts=2]") {
+TEST_CASE("friction: a sphere thrown without spin rolls without slipping at 5/7 v0", "[lab05][pts=2][sec=2][sec=3][sec=4][sec=5]") {
   const double v0 = uniform(1.0, 4.0), mu = uniform(0.1, 0.5), h = 1e-3, r = 0.1;
   World world(thrownSphere(v0, mu));
   // Sliding lasts 2 v0 / (7 mu g); run twice as long
@@ -140,7 +140,7 @@ TEST_CASE("friction: a sphere thrown without spin rolls without slipping at 5/7 
   CHECK(std::abs(v.x() - omega.y() * r) <= 1e-9);
 }
 
-TEST_CASE("friction: with mu = 0 a sphere thrown without spin slides for ever", "[lab05][pts=1]") {
+TEST_CASE("friction: with mu = 0 a sphere thrown without spin slides for ever", "[lab05][pts=1][sec=2][sec=3][sec=4][sec=5]") {
   const double v0 = uniform(1.0, 4.0), h = 1e-3;
   World world(thrownSphere(v0, 0.0));
   run(world, h, 2000);
@@ -151,7 +151,7 @@ TEST_CASE("friction: with mu = 0 a sphere thrown without spin slides for ever", 
   CHECK(world.diagnostics().max_penetration <= kG * h * h);
 }
 
-TEST_CASE("penalty: a resting sphere sinks to mg/k", "[lab05][pts=1]") {
+TEST_CASE("penalty: a resting sphere sinks to mg/k", "[lab05][pts=1][sec=7]") {
   const double m = uniform(0.5, 5.0), k = std::pow(10.0, uniform(3.0, 5.0)), h = 1e-4;
   Scene scene = bouncingBall(0.0, 0.5);
   scene.bodies[1] = BodyDescription::sphere(m, 0.1, 0.5, 0.0);
@@ -203,7 +203,7 @@ double largestStableStep(double m, double k) {
 
 }  // namespace
 
-TEST_CASE("penalty: the largest stable step shrinks as sqrt(m/k)", "[lab05][pts=2]") {
+TEST_CASE("penalty: the largest stable step shrinks as sqrt(m/k)", "[lab05][pts=2][sec=7]") {
   const double m = uniform(0.5, 5.0), k = std::pow(10.0, uniform(3.0, 4.0));
   const double h1 = largestStableStep(m, k), h4 = largestStableStep(m, 4 * k);
   // In units of mg/k and 1/omega the scene is the same for every m and k, so the ratio is 2 up
@@ -214,7 +214,7 @@ TEST_CASE("penalty: the largest stable step shrinks as sqrt(m/k)", "[lab05][pts=
   CHECK(h1 * std::sqrt(k / m) == Approx(2.0).epsilon(0.02));
 }
 
-TEST_CASE("box rain: sequential impulses keep every body in the container and add no energy", "[lab05][pts=1]") {
+TEST_CASE("box rain: sequential impulses keep every body in the container and add no energy", "[lab05][pts=1][sec=2][sec=3][sec=4][sec=5]") {
   World world(boxRain(16, static_cast<std::uint64_t>(uniform(0, 1e9))));
   const double h = 1e-3;
   world.step(h);

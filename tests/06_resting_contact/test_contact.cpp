@@ -63,7 +63,7 @@ MatX jacobianProduct(const std::vector<ContactBody>& bodies, const std::vector<C
 
 }  // namespace
 
-TEST_CASE("contact matrix: A equals J M^-1 J^T for random rows among moving and fixed bodies", "[lab06][pts=3]") {
+TEST_CASE("contact matrix: A equals J M^-1 J^T for random rows among moving and fixed bodies", "[lab06][pts=3][sec=1]") {
   std::vector<ContactBody> bodies;
   Mat3 I;
   for (int k = 0; k < 4; ++k) bodies.push_back(randomBody(I));
@@ -91,7 +91,7 @@ TEST_CASE("contact matrix: A equals J M^-1 J^T for random rows among moving and 
   CHECK(contactMatrix(bodies, {}).size() == 0);
 }
 
-TEST_CASE("contact matrix: a sphere on the ground, hand computed", "[lab06][pts=1]") {
+TEST_CASE("contact matrix: a sphere on the ground, hand computed", "[lab06][pts=1][sec=1]") {
   const double m = uniform(0.5, 3.0), I = uniform(0.1, 1.0), s = uniform(0.05, 0.3), R = 0.5;
   ContactBody sphere;
   sphere.x = Vec3(0.0, 0.0, R);
@@ -106,7 +106,7 @@ TEST_CASE("contact matrix: a sphere on the ground, hand computed", "[lab06][pts=
   CHECK(A(0, 1) == Approx(1.0 / m).epsilon(1e-14));
 }
 
-TEST_CASE("contact matrix: two boxes stacked on the ground, hand computed: a body that is B in one row and A in another", "[lab06][pts=1]") {
+TEST_CASE("contact matrix: two boxes stacked on the ground, hand computed: a body that is B in one row and A in another", "[lab06][pts=1][sec=1]") {
   // Bodies: the ground (fixed), a lower box 1 and an upper box 2, each with an isotropic inertia
   // I_k. Rows with vertical normals n_i = sigma_i z: the lower box on the ground (1, 0), the upper
   // on the lower (2, 1) at two points (rows sharing both bodies), and once the other way round
@@ -152,7 +152,7 @@ TEST_CASE("contact matrix: two boxes stacked on the ground, hand computed: a bod
   CHECK((A - expected).cwiseAbs().maxCoeff() <= 1e-13 * expected.cwiseAbs().maxCoeff());
 }
 
-TEST_CASE("Baraff's b: the second derivative of the separation with no contact force", "[lab06][pts=3]") {
+TEST_CASE("Baraff's b: the second derivative of the separation with no contact force", "[lab06][pts=3][sec=2]") {
   // Two moving bodies (or one against a fixed body) with applied forces and torques. Their
   // motion to second order in t, x(t) = x + v t + F/(2m) t^2 and R(t) = (1 + t W + t^2/2 (W' + W^2)) R,
   // has the true second derivatives at t = 0, so the central difference of
@@ -196,7 +196,7 @@ TEST_CASE("Baraff's b: the second derivative of the separation with no contact f
   }
 }
 
-TEST_CASE("Baraff's b: a body at rest on the ground feels only gravity; loads must match the bodies", "[lab06][pts=1]") {
+TEST_CASE("Baraff's b: a body at rest on the ground feels only gravity; loads must match the bodies", "[lab06][pts=1][sec=2]") {
   ContactBody box;
   box.x = Vec3(0.0, 0.0, 0.1);
   box.inv_mass = 0.5;
@@ -213,7 +213,7 @@ TEST_CASE("Baraff's b: a body at rest on the ground feels only gravity; loads mu
   CHECK_THROWS_AS(accelerationBias(bodies, loads, {{0, 1, corner, Vec3::UnitZ()}}), InvalidInput);
 }
 
-TEST_CASE("velocity bias: relative velocity along the row less the Baumgarte push, hand computed", "[lab06][pts=2]") {
+TEST_CASE("velocity bias: relative velocity along the row less the Baumgarte push, hand computed", "[lab06][pts=2][sec=7]") {
   ContactBody ball;
   ball.x = Vec3(0.0, 0.0, 0.1);
   ball.v = Vec3(uniform(0.5, 2.0), 0.0, -uniform(0.1, 1.0));
@@ -245,7 +245,7 @@ TEST_CASE("velocity bias: relative velocity along the row less the Baumgarte pus
   CHECK(velocityBias(bodies, rows, depths, h, beta, 0.0)(0) == Approx(ball.v.z() - beta / h * depth).epsilon(1e-13));
 }
 
-TEST_CASE("velocity bias: a moving, spinning body B counts with its own point velocity, in either row order", "[lab06][pts=1]") {
+TEST_CASE("velocity bias: a moving, spinning body B counts with its own point velocity, in either row order", "[lab06][pts=1][sec=7]") {
   // The ball of the test above on a platform B that moves and spins about z: at p = 0, B's point
   // moves at v_b + omega_b x (p - x_b) = (v_bx, -0.5 omega_bz, v_bz) for x_b = (0.5, 0, -0.1); the
   // ball's at (v_x - 0.1 omega_y, 0, v_z). Rows: the normal (ball A, platform B), the tangents x and
@@ -275,7 +275,7 @@ TEST_CASE("velocity bias: a moving, spinning body B counts with its own point ve
   CHECK(b(3) == Approx(b(0)).epsilon(1e-13));
 }
 
-TEST_CASE("friction pyramid: a sliding sphere's hand solution solves the LCP, a wrong friction does not", "[lab06][pts=3]") {
+TEST_CASE("friction pyramid: a sliding sphere's hand solution solves the LCP, a wrong friction does not", "[lab06][pts=3][sec=8]") {
   // A sphere (m, radius r) sliding at u along d_0 with the step's gravity in its velocity. By hand:
   // lambda_n = m g h stops the fall; friction mu lambda_n acts along d_2 = -d_0 (beta_2); the
   // contact point then slides at gamma = u - mu lambda_n (1/m + r^2/I) = u - 3.5 mu g h.
@@ -326,7 +326,7 @@ TEST_CASE("friction pyramid: a sliding sphere's hand solution solves the LCP, a 
   CHECK(lcpResidual(stick.A, stick.b, z) <= 1e-12);
 }
 
-TEST_CASE("friction pyramid: sizes that do not fit, k < 3 and negative mu are refused", "[lab06][pts=1]") {
+TEST_CASE("friction pyramid: sizes that do not fit, k < 3 and negative mu are refused", "[lab06][pts=1][sec=8]") {
   const int k = 4;
   const MatX A = MatX::Identity(2 + 2 * k, 2 + 2 * k);
   const VecX b = VecX::Zero(2 + 2 * k), mu = VecX::Constant(2, 0.5);
@@ -339,7 +339,7 @@ TEST_CASE("friction pyramid: sizes that do not fit, k < 3 and negative mu are re
   CHECK_THROWS_AS(frictionPyramid(A, b, Vec3(0.5, -0.1, 0.0).head<2>(), k), InvalidInput);
 }
 
-TEST_CASE("friction pyramid: two spheres sliding apart, each contact's directions and gamma kept together", "[lab06][pts=1]") {
+TEST_CASE("friction pyramid: two spheres sliding apart, each contact's directions and gamma kept together", "[lab06][pts=1][sec=8]") {
   // Two spheres (m_s, radius r) on the ground, sliding at u_s: sphere 0 along d_1, sphere 1 along
   // d_0, sphere 1 faster by 1 m/s. Rows: the 2 normals, then sphere 0's k directions, then sphere
   // 1's. By hand, as for one sphere: lambda_s = m_s g h, friction mu_s lambda_s on the direction
@@ -392,7 +392,7 @@ TEST_CASE("friction pyramid: two spheres sliding apart, each contact's direction
   CHECK(lcpResidual(lcp.A, lcp.b, wrong) > 1e-4);
 }
 
-TEST_CASE("friction pyramid: the smallest pyramid (k = 3) with a frictionless contact (mu = 0), built here entry by entry", "[lab06][pts=1]") {
+TEST_CASE("friction pyramid: the smallest pyramid (k = 3) with a frictionless contact (mu = 0), built here entry by entry", "[lab06][pts=1][sec=8]") {
   // m = 2 contacts, k = 3 directions (the least the header allows), contact 0 without friction
   // (mu = 0 is not negative). Unknowns (lambda_0, lambda_1, beta_0 (3), beta_1 (3), gamma_0, gamma_1).
   const int k = 3;
@@ -465,7 +465,7 @@ std::vector<std::pair<ContactRow, std::string>> badRows(const ContactRow& good) 
 
 }  // namespace
 
-TEST_CASE("contact matrix: rows naming no body, directions that are not unit, bad points and inverse masses are refused naming them", "[lab06][pts=1]") {
+TEST_CASE("contact matrix: rows naming no body, directions that are not unit, bad points and inverse masses are refused naming them", "[lab06][pts=1][sec=1]") {
   RowScene s = rowScene();
   // Valid: indices 0 and size - 1 either way round, a direction off by round-off, a fixed body
   ContactRow rounded = s.row;
@@ -491,7 +491,7 @@ TEST_CASE("contact matrix: rows naming no body, directions that are not unit, ba
   CHECK_THROWS_WITH(contactMatrix(bodies, {s.row}), Contains("body 0") && Contains("I_inv_world"));
 }
 
-TEST_CASE("Baraff's b and velocity bias: bad rows, inverse masses and depths are refused naming them", "[lab06][pts=1]") {
+TEST_CASE("Baraff's b and velocity bias: bad rows, inverse masses and depths are refused naming them", "[lab06][pts=1][sec=2][sec=7]") {
   RowScene s = rowScene();
   const std::vector<AppliedLoads> loads(s.bodies.size());
   // Valid: indices 0 and size - 1, a direction off by round-off, depth 0
@@ -518,7 +518,7 @@ TEST_CASE("Baraff's b and velocity bias: bad rows, inverse masses and depths are
   }
 }
 
-TEST_CASE("friction pyramid: a NaN or infinite entry of A or b, and an infinite mu, are refused naming them", "[lab06][pts=1]") {
+TEST_CASE("friction pyramid: a NaN or infinite entry of A or b, and an infinite mu, are refused naming them", "[lab06][pts=1][sec=8]") {
   const int k = 3;
   const MatX A = MatX::Identity(2 + 2 * k, 2 + 2 * k);
   const VecX b = VecX::Constant(2 + 2 * k, -1.0), mu = VecX::Constant(2, 0.5);

@@ -153,17 +153,17 @@ Stack heavyOnLightLcp(double ratio) {
 
 }  // namespace
 
-TEST_CASE("pivoting: one-step oracles, b >= 0 gives f = 0 exactly and 1 x 1 gives f = -b / a exactly", "[lab06][pts=1]") {
+TEST_CASE("pivoting: one-step oracles, b >= 0 gives f = 0 exactly and 1 x 1 gives f = -b / a exactly", "[lab06][pts=1][sec=3]") {
   checkOneStepOracles(pivoting);
   checkTwoByTwo(pivoting);
 }
 
-TEST_CASE("lemke: one-step oracles, b >= 0 gives f = 0 exactly and 1 x 1 gives f = -b / a exactly", "[lab06][pts=1]") {
+TEST_CASE("lemke: one-step oracles, b >= 0 gives f = 0 exactly and 1 x 1 gives f = -b / a exactly", "[lab06][pts=1][sec=4]") {
   checkOneStepOracles(lemke);
   checkTwoByTwo(lemke);
 }
 
-TEST_CASE("pivoting: recovers the planted solution of random SPD LCPs, degenerate contacts included", "[lab06][pts=3]") {
+TEST_CASE("pivoting: recovers the planted solution of random SPD LCPs, degenerate contacts included", "[lab06][pts=3][sec=3]") {
   for (int trial = 0; trial < 20; ++trial) {
     const Index n = static_cast<Index>(uniform(3, 25));
     const double cond = std::exp(uniform(0.0, std::log(1e4)));
@@ -171,7 +171,7 @@ TEST_CASE("pivoting: recovers the planted solution of random SPD LCPs, degenerat
   }
 }
 
-TEST_CASE("lemke: recovers the planted solution of random SPD LCPs, degenerate contacts included", "[lab06][pts=3]") {
+TEST_CASE("lemke: recovers the planted solution of random SPD LCPs, degenerate contacts included", "[lab06][pts=3][sec=4]") {
   for (int trial = 0; trial < 20; ++trial) {
     const Index n = static_cast<Index>(uniform(3, 25));
     const double cond = std::exp(uniform(0.0, std::log(1e4)));
@@ -179,7 +179,7 @@ TEST_CASE("lemke: recovers the planted solution of random SPD LCPs, degenerate c
   }
 }
 
-TEST_CASE("lemke: recovers the planted solution of non-symmetric P-matrix LCPs", "[lab06][pts=2]") {
+TEST_CASE("lemke: recovers the planted solution of non-symmetric P-matrix LCPs", "[lab06][pts=2][sec=4]") {
   for (int trial = 0; trial < 20; ++trial) {
     const Index n = static_cast<Index>(uniform(3, 20));
     const MatX A = randomPMatrix(n, 10.0, uniform(0.5, 3.0));
@@ -187,7 +187,7 @@ TEST_CASE("lemke: recovers the planted solution of non-symmetric P-matrix LCPs",
   }
 }
 
-TEST_CASE("pivoting: recovers the planted solution of non-symmetric P-matrix LCPs", "[lab06][pts=1]") {
+TEST_CASE("pivoting: recovers the planted solution of non-symmetric P-matrix LCPs", "[lab06][pts=1][sec=3]") {
   for (int trial = 0; trial < 20; ++trial) {
     const Index n = static_cast<Index>(uniform(3, 20));
     const MatX A = randomPMatrix(n, 10.0, uniform(0.5, 3.0));
@@ -195,15 +195,15 @@ TEST_CASE("pivoting: recovers the planted solution of non-symmetric P-matrix LCP
   }
 }
 
-TEST_CASE("pivoting: duplicated contacts (singular PSD A) still get a valid solution", "[lab06][pts=1]") {
+TEST_CASE("pivoting: duplicated contacts (singular PSD A) still get a valid solution", "[lab06][pts=1][sec=3]") {
   for (int trial = 0; trial < 20; ++trial) checkDuplicated(pivoting);
 }
 
-TEST_CASE("lemke: duplicated contacts (singular PSD A) still get a valid solution", "[lab06][pts=1]") {
+TEST_CASE("lemke: duplicated contacts (singular PSD A) still get a valid solution", "[lab06][pts=1][sec=4]") {
   for (int trial = 0; trial < 20; ++trial) checkDuplicated(lemke);
 }
 
-TEST_CASE("lemke: an LCP without a solution ends in ray termination (LcpFailure)", "[lab06][pts=2]") {
+TEST_CASE("lemke: an LCP without a solution ends in ray termination (LcpFailure)", "[lab06][pts=2][sec=4]") {
   // PSD A = a [[1, -1], [-1, 1]], b < 0: w_0 + w_1 = b_0 + b_1 < 0 for every f, so no w >= 0
   const double a = uniform(0.1, 10.0);
   MatX A(2, 2);
@@ -225,7 +225,7 @@ TEST_CASE("lemke: an LCP without a solution ends in ray termination (LcpFailure)
   }
 }
 
-TEST_CASE("pivoting: a singular pivot throws LcpFailure instead of returning NaN", "[lab06][pts=1]") {
+TEST_CASE("pivoting: a singular pivot throws LcpFailure instead of returning NaN", "[lab06][pts=1][sec=3]") {
   // 1 x 1, a = 0, b < 0: w = b whatever f is, no step can reach w = 0
   CHECK_THROWS_AS(solveLcpPivoting(MatX::Zero(1, 1), VecX::Constant(1, -uniform(0.1, 2.0))), LcpFailure);
   // Clamping contact 0 leaves contact 1 a zero Schur complement: driving f_1 moves nothing
@@ -236,7 +236,7 @@ TEST_CASE("pivoting: a singular pivot throws LcpFailure instead of returning NaN
   CHECK_THROWS_AS(solveLcpPivoting(A, b), LcpFailure);
 }
 
-TEST_CASE("pivoting and lemke: a heavy box on a light one is held exactly, where 10 PGS sweeps are far off", "[lab06][pts=2]") {
+TEST_CASE("pivoting and lemke: a heavy box on a light one is held exactly, where 10 PGS sweeps are far off", "[lab06][pts=2][sec=3][sec=4]") {
   const Stack s = heavyOnLightLcp(100.0);
   LcpOptions few;
   few.max_iterations = 10;
@@ -259,7 +259,7 @@ TEST_CASE("pivoting and lemke: a heavy box on a light one is held exactly, where
   CHECK(error_pgs > 1e6 * std::max({error_pivoting, error_lemke, 1e-16}));
 }
 
-TEST_CASE("pivoting: the same LCP in other units (A and b times 1e-14 or 1e14) has the same solution", "[lab06][pts=1]") {
+TEST_CASE("pivoting: the same LCP in other units (A and b times 1e-14 or 1e14) has the same solution", "[lab06][pts=1][sec=3]") {
   // w = s (A f + b): scaling A and b together scales w and leaves f unchanged, for any s > 0.
   // The sign test on w_d is relative to A's scale (pivot_tolerance times the largest |a_ij|): an
   // absolute pivot_tolerance would take every w of the problem scaled by 1e-14 for zero.
@@ -278,7 +278,7 @@ TEST_CASE("pivoting: the same LCP in other units (A and b times 1e-14 or 1e14) h
   }
 }
 
-TEST_CASE("pivoting and lemke: iterations count every pivot, counted by hand", "[lab06][pts=1]") {
+TEST_CASE("pivoting and lemke: iterations count every pivot, counted by hand", "[lab06][pts=1][sec=3][sec=4]") {
   // 1 x 1, b < 0. Pivoting: one step of f_0, which d itself blocks (1 pivot). Lemke: z0 enters
   // in row 0, then f_0 enters and z0 leaves (2 pivots).
   const double a = uniform(0.1, 10.0), b1 = -uniform(0.1, 10.0);

@@ -41,7 +41,7 @@ VecX randomWarmStart(Index n) {
 
 }  // namespace
 
-TEST_CASE("pgs: one-step oracles, b >= 0 gives f = 0 exactly and 1 x 1 gives f = -b / a exactly", "[lab06][pts=1]") {
+TEST_CASE("pgs: one-step oracles, b >= 0 gives f = 0 exactly and 1 x 1 gives f = -b / a exactly", "[lab06][pts=1][sec=5]") {
   const Index n = static_cast<Index>(uniform(2, 8));
   const MatX A = randomSpd(n, 10.0);
   VecX b(n);
@@ -55,7 +55,7 @@ TEST_CASE("pgs: one-step oracles, b >= 0 gives f = 0 exactly and 1 x 1 gives f =
   CHECK(one.iterations == 1);   // exact after one sweep, residual 0 or one rounding of a f + b
 }
 
-TEST_CASE("pgs: converges to the planted solution of well-conditioned SPD LCPs", "[lab06][pts=2]") {
+TEST_CASE("pgs: converges to the planted solution of well-conditioned SPD LCPs", "[lab06][pts=2][sec=5]") {
   for (int trial = 0; trial < 10; ++trial) {
     const Index n = static_cast<Index>(uniform(3, 20));
     const double cond = uniform(1.0, 10.0);
@@ -75,7 +75,7 @@ TEST_CASE("pgs: converges to the planted solution of well-conditioned SPD LCPs",
   }
 }
 
-TEST_CASE("pgs: a warm start is where the sweeps begin, and at the solution one sweep ends them", "[lab06][pts=1]") {
+TEST_CASE("pgs: a warm start is where the sweeps begin, and at the solution one sweep ends them", "[lab06][pts=1][sec=5]") {
   const Index n = static_cast<Index>(uniform(4, 12));
   const PlantedLcp p = wellConditioned(n, uniform(1.0, 10.0));
   // One sweep from a random start, with negative entries counting as 0, computed here.
@@ -104,7 +104,7 @@ TEST_CASE("pgs: a warm start is where the sweeps begin, and at the solution one 
   CHECK_THROWS_AS(solveLcpPgs(p.A, p.b, options), InvalidInput);
 }
 
-TEST_CASE("pgs: each sweep never increases the QP objective 1/2 f^T A f + b^T f on SPD problems", "[lab06][pts=2]") {
+TEST_CASE("pgs: each sweep never increases the QP objective 1/2 f^T A f + b^T f on SPD problems", "[lab06][pts=2][sec=5]") {
   const Index n = static_cast<Index>(uniform(5, 20));
   const double cond = std::exp(uniform(std::log(10.0), std::log(1000.0)));
   const PlantedLcp p = plantSolution(randomSpd(n, cond));
@@ -128,7 +128,7 @@ TEST_CASE("pgs: each sweep never increases the QP objective 1/2 f^T A f + b^T f 
   CHECK(previous < 0.0);  // b has a negative entry: the first update already lowers it below 0
 }
 
-TEST_CASE("pgs: the residual history has one entry per sweep, the last is the returned residual", "[lab06][pts=1]") {
+TEST_CASE("pgs: the residual history has one entry per sweep, the last is the returned residual", "[lab06][pts=1][sec=5]") {
   const Index n = static_cast<Index>(uniform(5, 15));
   const PlantedLcp p = wellConditioned(n, uniform(5.0, 50.0));
   // Stops at the first sweep at or below the tolerance, or after max_iterations
@@ -159,7 +159,7 @@ TEST_CASE("pgs: the residual history has one entry per sweep, the last is the re
   }
 }
 
-TEST_CASE("pgs cone: a contact on a slope sticks inside the cone and slides on its rim opposite w_t", "[lab06][pts=2]") {
+TEST_CASE("pgs cone: a contact on a slope sticks inside the cone and slides on its rim opposite w_t", "[lab06][pts=2][sec=6]") {
   // A point mass m on a slope of angle theta: in the contact frame (n, t, o), A = I / m and
   // b = g (-cos theta, sin theta u) with u the downhill direction in the tangent plane.
   const double m = uniform(0.5, 5.0), g = uniform(5.0, 15.0), mu = uniform(0.2, 1.0);
@@ -198,7 +198,7 @@ TEST_CASE("pgs cone: a contact on a slope sticks inside the cone and slides on i
   }
 }
 
-TEST_CASE("pgs cone: a body touching at an offset slides with friction on the rim exactly opposite w_T", "[lab06][pts=2]") {
+TEST_CASE("pgs cone: a body touching at an offset slides with friction on the rim exactly opposite w_T", "[lab06][pts=2][sec=6]") {
   // One contact of a rigid body away from its centre: A is a full SPD 3 x 3 (coupled normal and
   // tangents, a_tt != a_oo; diagonally dominant, so the coupling cannot jam the contact), pressed
   // in (b_n < 0) with a tangential pull far beyond what mu f_n can hold: it cannot stick.
@@ -227,7 +227,7 @@ TEST_CASE("pgs cone: a body touching at an offset slides with friction on the ri
   CHECK(f_T.dot(w_T) / (f_T.norm() * w_T.norm()) <= -1.0 + 1e-9);
 }
 
-TEST_CASE("pgs cone: coupled contacts that can stick converge to w = 0 inside the cone", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: coupled contacts that can stick converge to w = 0 inside the cone", "[lab06][pts=1][sec=6]") {
   const Index k = static_cast<Index>(uniform(1, 3));
   const MatX A = coneMatrix(k);
   // Plant a sticking solution well inside the cones: f_n > 0, |f_T| <= 0.5 mu f_n, w = 0
@@ -253,7 +253,7 @@ TEST_CASE("pgs cone: coupled contacts that can stick converge to w = 0 inside th
   CHECK((s.f - f).cwiseAbs().maxCoeff() <= 1e-8);
 }
 
-TEST_CASE("pgs cone: mu = 0 gives the frictionless answer of PGS on the normal rows", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: mu = 0 gives the frictionless answer of PGS on the normal rows", "[lab06][pts=1][sec=6]") {
   const Index k = static_cast<Index>(uniform(2, 6));
   const MatX A = coneMatrix(k);
   VecX b(3 * k);
@@ -277,7 +277,7 @@ TEST_CASE("pgs cone: mu = 0 gives the frictionless answer of PGS on the normal r
   }
 }
 
-TEST_CASE("pgs cone: after any number of sweeps f_n >= 0 and |f_T| <= mu f_n", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: after any number of sweeps f_n >= 0 and |f_T| <= mu f_n", "[lab06][pts=1][sec=6]") {
   const Index k = static_cast<Index>(uniform(2, 6));
   const MatX A = coneMatrix(k);
   VecX b(3 * k), mu(k);
@@ -302,7 +302,7 @@ TEST_CASE("pgs cone: after any number of sweeps f_n >= 0 and |f_T| <= mu f_n", "
   CHECK(any_friction);  // random tangential demands: some contact must use friction
 }
 
-TEST_CASE("pgs cone: one sweep from a warm start, computed here: clamp and disc-project the start, normal then disc step", "[lab06][pts=2]") {
+TEST_CASE("pgs cone: one sweep from a warm start, computed here: clamp and disc-project the start, normal then disc step", "[lab06][pts=2][sec=6]") {
   // The documented sweep, contact by contact: the start's negative normals count as 0 and its
   // tangential pairs are scaled onto their discs; then f_n <- max(0, f_n - w_n / a_nn), then
   // f_T <- f_T - w_T / lambda_max(symmetrised tangential block), scaled onto |f_T| <= mu f_n.
@@ -374,7 +374,7 @@ TEST_CASE("pgs cone: one sweep from a warm start, computed here: clamp and disc-
   CHECK(settled.residual == 0.0);
 }
 
-TEST_CASE("pgs cone: one-step oracle, no contact pressed gives f = 0 exactly after one sweep, whatever the tangential pull", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: one-step oracle, no contact pressed gives f = 0 exactly after one sweep, whatever the tangential pull", "[lab06][pts=1][sec=6]") {
   // b_n >= 0 (contact 0 just touching, b_n = 0): every normal update is max(0, 0 - b_n / a_nn) = 0,
   // so every disc has radius mu 0 = 0 and the tangential step, whatever b_T asks, is scaled back
   // to f_T = 0 (a zero f_T on a zero disc stays 0, no 0/0). The sweep changed nothing: the
@@ -399,7 +399,7 @@ TEST_CASE("pgs cone: one-step oracle, no contact pressed gives f = 0 exactly aft
   CHECK(s.residual == 0.0);
 }
 
-TEST_CASE("pgs: the result contract: no sweep at max_iterations <= 0, w of the returned f, tolerance 0 stops on an exact solution", "[lab06][pts=1]") {
+TEST_CASE("pgs: the result contract: no sweep at max_iterations <= 0, w of the returned f, tolerance 0 stops on an exact solution", "[lab06][pts=1][sec=5]") {
   const Index n = static_cast<Index>(uniform(4, 12));
   const PlantedLcp p = wellConditioned(n, uniform(1.0, 10.0));
   LcpOptions options;
@@ -442,7 +442,7 @@ TEST_CASE("pgs: the result contract: no sweep at max_iterations <= 0, w of the r
   CHECK(exact.iterations == 1);
 }
 
-TEST_CASE("pgs cone: with max_iterations <= 0 the start comes back projected, residual infinity, w = A f + b", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: with max_iterations <= 0 the start comes back projected, residual infinity, w = A f + b", "[lab06][pts=1][sec=6]") {
   const Index k = static_cast<Index>(uniform(1, 4));
   const MatX A = coneMatrix(k);
   VecX b(3 * k), mu(k), start(3 * k);

@@ -46,15 +46,15 @@ LcpSolution cone(const MatX& A, const VecX& b) {
 
 }  // namespace
 
-TEST_CASE("pivoting: refuses a non-square A, a b of the wrong size and NaN or infinite entries", "[lab06][pts=1]") {
+TEST_CASE("pivoting: refuses a non-square A, a b of the wrong size and NaN or infinite entries", "[lab06][pts=1][sec=3]") {
   checkRefusesBadInput(pivoting);
 }
 
-TEST_CASE("lemke: refuses a non-square A, a b of the wrong size and NaN or infinite entries", "[lab06][pts=1]") {
+TEST_CASE("lemke: refuses a non-square A, a b of the wrong size and NaN or infinite entries", "[lab06][pts=1][sec=4]") {
   checkRefusesBadInput(lemke);
 }
 
-TEST_CASE("pgs: refuses bad input, and a non-positive diagonal entry with LcpFailure", "[lab06][pts=1]") {
+TEST_CASE("pgs: refuses bad input, and a non-positive diagonal entry with LcpFailure", "[lab06][pts=1][sec=5]") {
   checkRefusesBadInput(pgs);
   // Each update divides by a_ii: a zero there is a numerical failure, not a NaN in f
   MatX A = MatX::Identity(3, 3);
@@ -71,7 +71,7 @@ TEST_CASE("pgs: refuses bad input, and a non-positive diagonal entry with LcpFai
   CHECK_NOTHROW(solveLcpPgs(A, VecX::Constant(3, -1.0), options));
 }
 
-TEST_CASE("pgs cone: refuses bad input, a size not a multiple of 3, a wrong mu size, a negative or infinite mu and a_ii <= pivot_tolerance", "[lab06][pts=1]") {
+TEST_CASE("pgs cone: refuses bad input, a size not a multiple of 3, a wrong mu size, a negative or infinite mu and a_ii <= pivot_tolerance", "[lab06][pts=1][sec=6]") {
   checkRefusesBadInput(cone);
   const Index k = static_cast<Index>(uniform(1, 4));
   const MatX A = randomSpd(3 * k, 10.0);
@@ -106,7 +106,7 @@ TEST_CASE("pgs cone: refuses bad input, a size not a multiple of 3, a wrong mu s
   CHECK_NOTHROW(solveLcpPgsCone(A, b, VecX::Constant(k, 0.5), options));
 }
 
-TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and allows zero ones", "[lab06][pts=1]") {
+TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and allows zero ones", "[lab06][pts=1][sec=3][sec=4][sec=5][sec=6]") {
   const Index n = 3 * static_cast<Index>(uniform(1, 4));
   const MatX A = randomSpd(n, 10.0);
   VecX b(n);
@@ -157,7 +157,7 @@ TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and all
   CHECK(c.f.tail<2>().norm() <= 0.5 * c.f(0) * (1.0 + 1e-15));  // scaled onto the disc: round-off only
 }
 
-TEST_CASE("every solver takes an empty LCP (n = 0): empty f and w, no pivot, residual 0", "[lab06][pts=1]") {
+TEST_CASE("every solver takes an empty LCP (n = 0): empty f and w, no pivot, residual 0", "[lab06][pts=1][sec=3][sec=4][sec=5][sec=6]") {
   // No contact at all is a valid problem (LcpSolution's contract), not an error and not a read
   // past the end of an empty vector
   const MatX A(0, 0);

@@ -35,7 +35,7 @@ double largestDrift(const World& world, const std::vector<BodyState>& start) {
 
 }  // namespace
 
-TEST_CASE("resting box: the normal forces carry Mg and balance the torque, at any yaw", "[lab06][pts=2]") {
+TEST_CASE("resting box: the normal forces carry Mg and balance the torque, at any yaw", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Lemke}) {
     World world = restingWorld(restingBox(uniform(-M_PI, M_PI)), Formulation::Acceleration, method);
     world.step(kH);
@@ -56,7 +56,7 @@ TEST_CASE("resting box: the normal forces carry Mg and balance the torque, at an
   }
 }
 
-TEST_CASE("plank on two supports: the lever rule Mg b / (a + b) and Mg a / (a + b)", "[lab06][pts=2]") {
+TEST_CASE("plank on two supports: the lever rule Mg b / (a + b) and Mg a / (a + b)", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   const double a = uniform(0.1, 0.9), b = uniform(0.1, 0.9);
   for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Lemke}) {
     World world = restingWorld(plankOnTwoSupports(a, b), Formulation::Acceleration, method);
@@ -71,7 +71,7 @@ TEST_CASE("plank on two supports: the lever rule Mg b / (a + b) and Mg a / (a + 
   }
 }
 
-TEST_CASE("stack: 10 boxes stand for 10 s at 60 Hz with drift under 1 mm (velocity level)", "[lab06][pts=3]") {
+TEST_CASE("stack: 10 boxes stand for 10 s at 60 Hz with drift under 1 mm (velocity level)", "[lab06][pts=3][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Lemke}) {
     World world = restingWorld(cubeStack(10), Formulation::Velocity, method);
     const std::vector<BodyState> start = world.states();
@@ -83,7 +83,7 @@ TEST_CASE("stack: 10 boxes stand for 10 s at 60 Hz with drift under 1 mm (veloci
   }
 }
 
-TEST_CASE("pyramid: 5 rows (15 cubes) stand for 10 s at 60 Hz (velocity level)", "[lab06][pts=2]") {
+TEST_CASE("pyramid: 5 rows (15 cubes) stand for 10 s at 60 Hz (velocity level)", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Pgs}) {
     World world = restingWorld(cubePyramid(5), Formulation::Velocity, method, 100);
     const std::vector<BodyState> start = world.states();
@@ -100,7 +100,7 @@ TEST_CASE("pyramid: 5 rows (15 cubes) stand for 10 s at 60 Hz (velocity level)",
   }
 }
 
-TEST_CASE("friction ramp: blocks stick when tan(theta) < mu and slide at g (sin - mu cos) otherwise", "[lab06][pts=3]") {
+TEST_CASE("friction ramp: blocks stick when tan(theta) < mu and slide at g (sin - mu cos) otherwise", "[lab06][pts=3][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   const double theta = uniform(0.35, 0.6);
   const std::vector<double> mu = {0.0, 0.5 * std::tan(theta), 0.8 * std::tan(theta), 1.25 * std::tan(theta), 2.0};
   for (const LcpMethod method : {LcpMethod::Lemke, LcpMethod::Pgs}) {
@@ -123,7 +123,7 @@ TEST_CASE("friction ramp: blocks stick when tan(theta) < mu and slide at g (sin 
   }
 }
 
-TEST_CASE("mass ratio: pivoting and Lemke hold a 100x heavier box on a light one, 10 PGS sweeps do not", "[lab06][pts=2]") {
+TEST_CASE("mass ratio: pivoting and Lemke hold a 100x heavier box on a light one, 10 PGS sweeps do not", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   auto drift = [](LcpMethod method, int sweeps) {
     World world = restingWorld(heavyOnLight(100.0), Formulation::Velocity, method, sweeps);
     const std::vector<BodyState> start = world.states();
@@ -140,7 +140,7 @@ TEST_CASE("mass ratio: pivoting and Lemke hold a 100x heavier box on a light one
   CHECK(pgs > 10.0 * std::max(pivoting, lemke));
 }
 
-TEST_CASE("lemke: the redundant contacts of a pyramid (many near-zero pivots) are solved, never answered wrongly", "[lab06][pts=1]") {
+TEST_CASE("lemke: the redundant contacts of a pyramid (many near-zero pivots) are solved, never answered wrongly", "[lab06][pts=1][sec=4]") {
   // Four corners per face make most pivot columns hold round-off-sized entries; pivoting on
   // one wrecks the tableau (an early reference left a contact approaching at 0.4 m/s here).
   Scene scene = cubePyramid(5);
@@ -217,7 +217,7 @@ class CheckedConeSolver : public RestingContactSolver {
 
 }  // namespace
 
-TEST_CASE("pyramid: 10 rows (55 cubes) stand for 10 s, and your A, b and cone PGS give its impulses", "[lab06][pts=3]") {
+TEST_CASE("pyramid: 10 rows (55 cubes) stand for 10 s, and your A, b and cone PGS give its impulses", "[lab06][pts=3][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   RestingSettings settings;
   settings.method = LcpMethod::Pgs;
   settings.lcp.max_iterations = 100;

@@ -28,24 +28,24 @@ int checkScenes(std::initializer_list<const char*> names, const RestingSettings&
 
 }  // namespace
 
-TEST_CASE("textbook scenes, resting contact: boxes and balls rebound to e^2 at any speed, flat boxes without turning", "[lab06][pts=3]") {
+TEST_CASE("textbook scenes, resting contact: boxes and balls rebound to e^2 at any speed, flat boxes without turning", "[lab06][pts=3][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   // The slow drops hit at 0.9 m/s: a bounce below the old 1 m/s resting threshold
   CHECK(checkScenes({"flat drop", "slow", "ball", "tilted drop"}) == 6);
 }
 
-TEST_CASE("textbook scenes, resting contact: a ramp holds below atan(mu), slides at g(sin - mu cos) above; a thrown ball rolls at 5/7 v0", "[lab06][pts=2]") {
+TEST_CASE("textbook scenes, resting contact: a ramp holds below atan(mu), slides at g(sin - mu cos) above; a thrown ball rolls at 5/7 v0", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   CHECK(checkScenes({"ramp", "thrown ball"}) == 3);
 }
 
-TEST_CASE("textbook scenes, resting contact: a 100:1 heavy box stays on a light one, overlap is pushed out without a jump, dominoes fall in order", "[lab06][pts=2]") {
+TEST_CASE("textbook scenes, resting contact: a 100:1 heavy box stays on a light one, overlap is pushed out without a jump, dominoes fall in order", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   CHECK(checkScenes({"heavy on light", "overlap recovery", "dominoes"}) == 3);
 }
 
-TEST_CASE("textbook scenes, resting contact: a stack of 10 cubes stands and settles under 5 mm", "[lab06][pts=2]") {
+TEST_CASE("textbook scenes, resting contact: a stack of 10 cubes stands and settles under 5 mm", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   CHECK(checkScenes({"stack"}) == 1);
 }
 
-TEST_CASE("textbook scenes, resting contact: with converged PGS the stack of 10 stands still", "[lab06][pts=1]") {
+TEST_CASE("textbook scenes, resting contact: with converged PGS the stack of 10 stands still", "[lab06][pts=1][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   // The suite's bar is 'stands'; 'still' needs PGS converged: 100 sweeps sway the top by about
   // 3 cm, 300 by under 1 cm (the exact solvers hold it to 1e-8 m, but Lemke cannot take every
   // scene of the suite: the dominoes' degenerate corners end it on a ray).

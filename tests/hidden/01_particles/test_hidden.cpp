@@ -7,7 +7,7 @@
 using namespace physlab;
 using namespace physlab::test;
 
-TEST_CASE("hidden: RK4 on the oscillator equals its stability polynomial applied N times", "[lab01][pts=2][hidden]") {
+TEST_CASE("hidden: RK4 on the oscillator equals its stability polynomial applied N times", "[lab01][pts=2][hidden][sec=3]") {
   const HarmonicOscillator osc(uniform(0.5, 2.0));
   const double z = uniform(0.05, 0.5);  // h omega
   const long steps = 1 + static_cast<long>(uniform(10.0, 200.0));
@@ -24,7 +24,7 @@ TEST_CASE("hidden: RK4 on the oscillator equals its stability polynomial applied
   CHECK(X[1] / osc.omega == Approx(u.imag()).margin(1e-12));
 }
 
-TEST_CASE("hidden: a damped spring dissipates power kd (l_dot . u)^2", "[lab01][pts=2][hidden]") {
+TEST_CASE("hidden: a damped spring dissipates power kd (l_dot . u)^2", "[lab01][pts=2][hidden][sec=1]") {
   Mat3X x(3, 2), v(3, 2);
   x.col(0) = randomVec3(1.0);
   x.col(1) = x.col(0) + Vec3(0.5, 0.0, 0.0) + randomVec3(0.3);

@@ -5,7 +5,7 @@
 using namespace physlab;
 using namespace physlab::test;
 
-TEST_CASE("hidden: a damped hanging rope settles where each spring carries the weight below it", "[lab02][pts=2][hidden]") {
+TEST_CASE("hidden: a damped hanging rope settles where each spring carries the weight below it", "[lab02][pts=2][hidden][sec=1]") {
   const Index n = 8;
   const double k = uniform(200.0, 2000.0), m = uniform(0.05, 0.2), g = 9.81;
   SpringNetwork net = makeRope(n, 1.0, m * (n - 1), k, 2.0);
@@ -21,7 +21,7 @@ TEST_CASE("hidden: a damped hanging rope settles where each spring carries the w
   }
 }
 
-TEST_CASE("hidden: a particle dropped on the penalty ground rests at depth m g / k", "[lab02][pts=1][hidden]") {
+TEST_CASE("hidden: a particle dropped on the penalty ground rests at depth m g / k", "[lab02][pts=1][hidden][sec=4]") {
   SpringNetwork net;
   net.masses = VecX::Constant(1, uniform(0.1, 1.0));
   net.rest_positions = Mat3X::Zero(3, 1);

@@ -5,7 +5,7 @@
 using namespace physlab;
 using namespace physlab::test;
 
-TEST_CASE("hidden: a spinning sphere turns at the constant rate L / I", "[lab03][pts=2][hidden]") {
+TEST_CASE("hidden: a spinning sphere turns at the constant rate L / I", "[lab03][pts=2][hidden][sec=4]") {
   const double I = uniform(0.5, 2.0);
   const RigidBodySystem sys(RigidBody(1.0, I * Mat3::Identity()));
   const Vec3 L = randomVec3(2.0);
@@ -19,7 +19,7 @@ TEST_CASE("hidden: a spinning sphere turns at the constant rate L / I", "[lab03]
   CHECK(orientationOf(X).angularDistance(expected) < 1e-9);
 }
 
-TEST_CASE("hidden: Euler's equations conserve kinetic energy and |L| in the body frame", "[lab03][pts=1][hidden]") {
+TEST_CASE("hidden: Euler's equations conserve kinetic energy and |L| in the body frame", "[lab03][pts=1][hidden][sec=7]") {
   const Mat3 I = Vec3(uniform(0.5, 1.0), uniform(1.5, 2.0), uniform(2.5, 3.0)).asDiagonal();
   Vec3 w = randomVec3(1.0);
   const double E0 = 0.5 * w.dot(I * w), L0 = (I * w).norm();

@@ -22,7 +22,7 @@ std::vector<std::unique_ptr<BroadPhase>> studentMethods() {
 
 }  // namespace
 
-TEST_CASE("hidden: broad phases are exact far from the origin", "[lab04][pts=1][hidden]") {
+TEST_CASE("hidden: broad phases are exact far from the origin", "[lab04][pts=1][hidden][sec=1]") {
   // At 10^6 m the spacing of doubles is ~1e-10 m: coordinates are still exact multiples of it,
   // and cell and split computations must not lose touching pairs to rounding.
   const int n = randomCount(10, 2000);
@@ -40,7 +40,7 @@ TEST_CASE("hidden: broad phases are exact far from the origin", "[lab04][pts=1][
   }
 }
 
-TEST_CASE("hidden: broad phases handle boxes flat on one plane", "[lab04][pts=1][hidden]") {
+TEST_CASE("hidden: broad phases handle boxes flat on one plane", "[lab04][pts=1][hidden][sec=1]") {
   const int n = randomCount(10, 2000);
   std::vector<Aabb> boxes = randomScene(n, BoxSizes::Flat);
   const double z = uniform(-5, 5);
@@ -53,7 +53,7 @@ TEST_CASE("hidden: broad phases handle boxes flat on one plane", "[lab04][pts=1]
   }
 }
 
-TEST_CASE("hidden: sort-and-sweep update and BVH refit survive teleported boxes", "[lab04][pts=1][hidden]") {
+TEST_CASE("hidden: sort-and-sweep update and BVH refit survive teleported boxes", "[lab04][pts=1][hidden][sec=1]") {
   const int n = randomCount(10, 2000);
   std::vector<Aabb> boxes = randomScene(n, BoxSizes::Uniform);
   SweepAndPrune sap;
@@ -71,7 +71,7 @@ TEST_CASE("hidden: sort-and-sweep update and BVH refit survive teleported boxes"
   CHECK_SAME_PAIRS(bvh_pairs, expected);
 }
 
-TEST_CASE("hidden: no boxes and one box give no pairs", "[lab04][pts=1][hidden]") {
+TEST_CASE("hidden: no boxes and one box give no pairs", "[lab04][pts=1][hidden][sec=1]") {
   for (const auto& method : studentMethods()) {
     INFO(method->name());
     PairList pairs = {{0, 1}};  // stale content must be cleared

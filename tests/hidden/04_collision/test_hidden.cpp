@@ -8,7 +8,7 @@
 using namespace physlab;
 using namespace physlab::test;
 
-TEST_CASE("hidden: each box of a stack rests on the one below at 4 corners with the stack's overlap", "[lab04][pts=2][hidden]") {
+TEST_CASE("hidden: each box of a stack rests on the one below at 4 corners with the stack's overlap", "[lab04][pts=2][hidden][sec=5]") {
   const double overlap = uniform(0.001, 0.02);
   const std::vector<CollisionBody> stack = boxStack(4, overlap);
   // Turn the whole stack by a random rigid motion: the contacts must follow it.
@@ -24,7 +24,7 @@ TEST_CASE("hidden: each box of a stack rests on the one below at 4 corners with 
   }
 }
 
-TEST_CASE("hidden: parallel capsules lying side by side touch at both ends of their overlap", "[lab04][pts=1][hidden]") {
+TEST_CASE("hidden: parallel capsules lying side by side touch at both ends of their overlap", "[lab04][pts=1][hidden][sec=3]") {
   const Capsule a(uniform(0.1, 0.3), uniform(0.5, 1.0)), b(uniform(0.1, 0.3), uniform(0.5, 1.0));
   const Pose frame = randomPose(1.0);
   const double overlap = uniform(0.001, 0.05), shift = uniform(-0.3, 0.3);
@@ -44,7 +44,7 @@ TEST_CASE("hidden: parallel capsules lying side by side touch at both ends of th
   CHECK(m.points[0].id != m.points[1].id);  // ids are unique within a manifold (warm starting)
 }
 
-TEST_CASE("hidden: both time-of-impact methods agree on random pairs from a shape soup", "[lab04][pts=1][hidden]") {
+TEST_CASE("hidden: both time-of-impact methods agree on random pairs from a shape soup", "[lab04][pts=1][hidden][sec=9]") {
   // Soups until ten pairs hit in both methods, so that every seed checks as much as any other
   // (one soup of a few seeds has no pair that meets within the step)
   const double h = 0.5, tol = 1e-6;

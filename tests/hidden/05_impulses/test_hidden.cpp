@@ -50,7 +50,7 @@ double meanSweeps(bool warm_start) {
 
 }  // namespace
 
-TEST_CASE("hidden: a fixed body as A leaves the moving B bouncing with -epsilon v_n", "[lab05][pts=1][hidden]") {
+TEST_CASE("hidden: a fixed body as A leaves the moving B bouncing with -epsilon v_n", "[lab05][pts=1][hidden][sec=2][sec=3]") {
   FixedPair s = randomFixedPair();
   // With the fixed body as A the normal points into the moving body: it approaches when
   // n . (0 - pdot_B) < 0
@@ -66,14 +66,14 @@ TEST_CASE("hidden: a fixed body as A leaves the moving B bouncing with -epsilon 
   CHECK(after == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
 }
 
-TEST_CASE("hidden: warm starting cuts the simultaneous solver's sweeps on a resting box", "[lab05][pts=1][hidden]") {
+TEST_CASE("hidden: warm starting cuts the simultaneous solver's sweeps on a resting box", "[lab05][pts=1][hidden][sec=6]") {
   const double cold = meanSweeps(false), warm = meanSweeps(true);
   INFO("sweeps per step: cold " << cold << ", warm " << warm);
   // Last step's impulses are nearly this step's: far fewer sweeps (a factor, not a few percent).
   CHECK(warm < 0.5 * cold);
 }
 
-TEST_CASE("hidden: the simultaneous solver bounces a ball by epsilon^2 too", "[lab05][pts=1][hidden]") {
+TEST_CASE("hidden: the simultaneous solver bounces a ball by epsilon^2 too", "[lab05][pts=1][hidden][sec=2][sec=3][sec=4][sec=6]") {
   const double epsilon = uniform(0.6, 0.9), H = uniform(0.5, 1.5), h = 1e-4, r = 0.1;
   Settings settings;
   settings.method = ResponseMethod::Simultaneous;

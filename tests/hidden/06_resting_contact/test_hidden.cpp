@@ -15,7 +15,7 @@ constexpr double kH = 1.0 / 60.0;
 
 }  // namespace
 
-TEST_CASE("hidden: a box at rest on the ground, velocity level with friction, carries Mg and stays put", "[lab06][pts=1][hidden]") {
+TEST_CASE("hidden: a box at rest on the ground, velocity level with friction, carries Mg and stays put", "[lab06][pts=1][hidden][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   for (const LcpMethod method : {LcpMethod::Lemke, LcpMethod::Pgs}) {
     RestingSettings resting;
     resting.method = method;
@@ -35,7 +35,7 @@ TEST_CASE("hidden: a box at rest on the ground, velocity level with friction, ca
   }
 }
 
-TEST_CASE("hidden: Baraff's b with a fixed body as A and a spinning B", "[lab06][pts=1][hidden]") {
+TEST_CASE("hidden: Baraff's b with a fixed body as A and a spinning B", "[lab06][pts=1][hidden][sec=2]") {
   // B spins and moves, A is fixed: only B's terms and n_dot = omega_b x n remain. At p on B's
   // surface, d(t) = n(t) . (p - p_b(t)) with B's motion to second order; its central difference.
   ContactBody A, B;
