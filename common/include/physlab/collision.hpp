@@ -296,8 +296,10 @@ struct DistanceResult {
 DistanceResult gjkDistance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b);
 ///@}
 
-/// Distance for any pair: the closed form against a Plane (the other shape's support point along
-/// \f$-\hat n\f$), gjkDistance() otherwise. Validates both poses.
+/// Distance for any pair: closed forms against a Plane (the other shape's support point along
+/// \f$-\hat n\f$) and for a Sphere against a Sphere or a Box (its centre clamped to the box in
+/// the box's frame), gjkDistance() otherwise. Closed forms report 1 iteration; touching counts as
+/// overlap, as in GJK. So time of impact on those pairs needs no GJK. Validates both poses.
 DistanceResult distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b);
 
 // ---------------------------------------------------------------------------------------------

@@ -1,8 +1,10 @@
-// Framework half of Lab 4: the narrow-phase dispatcher, the distance query for any pair, and
-// the few pairs that need no new idea (a capsule or a polyhedron on a plane; spheres and
-// capsules against polyhedra are in rounded.cpp).
+// Framework half of Lab 4: the narrow-phase dispatcher, the distance query for any pair (closed
+// forms where a sphere or a plane makes one, GJK otherwise), and the few pairs that need no new
+// idea (a capsule or a polyhedron on a plane; spheres and capsules against polyhedra are in
+// rounded.cpp).
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "physlab/collision.hpp"
 #include "physlab/error.hpp"
@@ -70,6 +72,36 @@ Manifold collideOrdered(const Shape& a, const Pose& pa, const Shape& b, const Po
   return Manifold{};
 }
 
+// Closest points of a ball (centre c, radius r) and the point q of another shape nearest to c,
+// from which a ball of radius r_q grows; c on the core means overlap.
+DistanceResult ballDistance(const Vec3& c, double r, const Vec3& q, double r_q) {
+  DistanceResult d;
+  const Vec3 gap = q - c;
+  const double centres = gap.norm();
+  d.distance = std::max(centres - r - r_q, 0.0);
+  d.overlap = centres - r - r_q <= 0.0;
+  const Vec3 u = centres > 0.0 ? Vec3(gap / centres) : Vec3::UnitZ();
+  d.point_a = c + r * u;
+  d.point_b = q - r_q * u;
+  d.iterations = 1;
+  return d;
+}
+
+// A sphere (A) against a sphere or a box (B) in closed form; `found` is false for other shapes.
+DistanceResult sphereDistance(const Sphere& a, const Pose& pose_a, const Shape& b, const Pose& pose_b,
+                              bool& found) {
+  found = true;
+  if (const auto* sb = std::get_if<Sphere>(&b)) return ballDistance(pose_a.x, a.radius, pose_b.x, sb->radius);
+  if (const auto* box = std::get_if<Box>(&b)) {
+    // The box's point nearest to the centre: the centre clamped to the box in its frame
+    const Vec3 local = pose_b.toBody(pose_a.x);
+    const Vec3 nearest = local.cwiseMax(-box->half_extents).cwiseMin(box->half_extents);
+    return ballDistance(pose_a.x, a.radius, pose_b.toWorld(nearest), 0.0);
+  }
+  found = false;
+  return DistanceResult{};
+}
+
 }  // namespace
 
 Manifold collide(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b) {
@@ -93,7 +125,21 @@ DistanceResult distance(const Shape& a, const Pose& pose_a, const Shape& b, cons
   const auto* plane_a = std::get_if<Plane>(&a);
   const auto* plane_b = std::get_if<Plane>(&b);
   if (plane_a && plane_b) throw InvalidInput("distance: two planes (unbounded) have no distance query");
-  if (!plane_a && !plane_b) return gjkDistance(a, pose_a, b, pose_b);
+  if (!plane_a && !plane_b) {
+    bool found = false;
+    if (const auto* sa = std::get_if<Sphere>(&a)) {
+      const DistanceResult d = sphereDistance(*sa, pose_a, b, pose_b, found);
+      if (found) return d;
+    }
+    if (const auto* sb = std::get_if<Sphere>(&b)) {
+      DistanceResult d = sphereDistance(*sb, pose_b, a, pose_a, found);
+      if (found) {
+        std::swap(d.point_a, d.point_b);
+        return d;
+      }
+    }
+    return gjkDistance(a, pose_a, b, pose_b);
+  }
   // Against a plane the deepest point of the other shape is its support point along -n.
   const Plane& plane = plane_a ? *plane_a : *plane_b;
   const Vec3 deepest = plane_a ? support(b, pose_b, -plane.normal) : support(a, pose_a, -plane.normal);
