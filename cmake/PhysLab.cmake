@@ -152,13 +152,40 @@ function(physlab_variant_executables name stage objects)
 endfunction()
 
 # Graded tests of `stage` from `sources` into the object library `objects` and the executables
-# `exe` (reference) and `exe_labs` (labs/).
-function(physlab_add_tests stage objects exe sources)
+# `exe` (reference), `exe_labs` (labs/) and `exe_labs_<file>` for each file in `mixes` (that
+# student file with the reference of the others).
+function(physlab_add_tests stage objects exe sources mixes)
   add_library(${objects} OBJECT ${sources})
   target_link_libraries(${objects} PRIVATE physlab_test_support)
   physlab_test_unity(${objects})
   physlab_warnings(${objects})
   physlab_variant_executables(${exe} ${stage} ${objects} physlab_test_runner physlab_test_support)
+  foreach(unit IN LISTS mixes)
+    add_executable(${exe}_labs_${unit} $<TARGET_OBJECTS:${objects}>)
+    target_link_libraries(${exe}_labs_${unit} PRIVATE physlab_test_runner physlab_test_support
+                          physlab_${stage}_mix_${unit})
+  endforeach()
+endfunction()
+
+# One object library per source file (`prefix`_<file name without .cpp>), so that a file can be
+# linked without the others; `out` gets the file names.
+function(physlab_unit_objects prefix sources deps out)
+  set(units "")
+  foreach(source IN LISTS sources)
+    get_filename_component(unit "${source}" NAME_WE)
+    add_library(${prefix}_${unit} OBJECT "${source}")
+    target_link_libraries(${prefix}_${unit} PUBLIC physlab_common ${deps})
+    physlab_cxx(${prefix}_${unit})
+    list(APPEND units ${unit})
+  endforeach()
+  set(${out} "${units}" PARENT_SCOPE)
+endfunction()
+
+# Adds the objects of the files `units` (made by physlab_unit_objects with `prefix`) to `target`.
+function(physlab_add_units target prefix units)
+  foreach(unit IN LISTS units)
+    target_sources(${target} PRIVATE $<TARGET_OBJECTS:${prefix}_${unit}>)
+  endforeach()
 endfunction()
 
 function(physlab_add_lab stage)
@@ -200,9 +227,10 @@ function(physlab_add_lab stage)
   # Student implementation, from PHYSLAB_LABS_DIR (absent in a submission that left it out).
   file(GLOB lab_sources CONFIGURE_DEPENDS "${PHYSLAB_LABS_DIR}/${stage}/*.cpp")
   if(lab_sources)
-    add_library(physlab_${stage}_labs STATIC ${lab_sources} ${framework_objects})
+    physlab_unit_objects(physlab_${stage}_labs "${lab_sources}" "${deps}" lab_units)
+    add_library(physlab_${stage}_labs STATIC ${framework_objects})
+    physlab_add_units(physlab_${stage}_labs physlab_${stage}_labs "${lab_units}")
     target_link_libraries(physlab_${stage}_labs PUBLIC physlab_common ${deps})
-    physlab_cxx(physlab_${stage}_labs)
   endif()
 
   # Reference implementation; in the published student version it is the student's own.
@@ -211,14 +239,36 @@ function(physlab_add_lab stage)
   else()
     file(GLOB ref_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/labs/${stage}/*.cpp")
   endif()
-  add_library(physlab_${stage}_ref STATIC ${ref_sources} ${framework_objects})
+  physlab_unit_objects(physlab_${stage}_ref "${ref_sources}" "${deps}" ref_units)
+  add_library(physlab_${stage}_ref STATIC ${framework_objects})
+  physlab_add_units(physlab_${stage}_ref physlab_${stage}_ref "${ref_units}")
   target_link_libraries(physlab_${stage}_ref PUBLIC physlab_common ${deps})
-  physlab_cxx(physlab_${stage}_ref)
+
+  # Partial credit: a test grades the functions of its handout sections ([sec=N] tags), so with
+  # the reference at hand each student file also gets a library of its own beside the reference of
+  # the lab's other files (physlab_NN_mix_<file>), linked into test_NN_labs_<file>; ./physlab test
+  # runs each test in the executable of the files its sections are in (tools/grader.py).
+  set(mixes "")
+  if(PHYSLAB_HAVE_SOLUTIONS AND lab_sources)
+    foreach(unit IN LISTS lab_units)
+      list(FIND ref_units "${unit}" found)
+      if(found LESS 0)
+        continue()
+      endif()
+      set(others "${ref_units}")
+      list(REMOVE_ITEM others "${unit}")
+      add_library(physlab_${stage}_mix_${unit} STATIC ${framework_objects})
+      physlab_add_units(physlab_${stage}_mix_${unit} physlab_${stage}_ref "${others}")
+      physlab_add_units(physlab_${stage}_mix_${unit} physlab_${stage}_labs "${unit}")
+      target_link_libraries(physlab_${stage}_mix_${unit} PUBLIC physlab_common ${deps})
+      list(APPEND mixes ${unit})
+    endforeach()
+  endif()
 
   # Graded tests: compiled once, linked against each implementation. Hidden tests get their own
   # executables, so that their text is never in a process that runs the visible tests.
   file(GLOB tests CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/${stage}/*.cpp")
-  physlab_add_tests(${stage} physlab_${stage}_tests test_${stage} "${tests}")
+  physlab_add_tests(${stage} physlab_${stage}_tests test_${stage} "${tests}" "${mixes}")
   catch_discover_tests(test_${stage} TEST_PREFIX "${stage}: " PROPERTIES TIMEOUT 120 LABELS solutions)
   if(TARGET test_${stage}_labs)
     catch_discover_tests(test_${stage}_labs TEST_PREFIX "labs ${stage}: "
@@ -230,12 +280,22 @@ function(physlab_add_lab stage)
   endif()
   set(hidden_objects "")
   if(hidden)
-    physlab_add_tests(${stage} physlab_${stage}_hidden test_${stage}_hidden "${hidden}")
+    physlab_add_tests(${stage} physlab_${stage}_hidden test_${stage}_hidden "${hidden}" "${mixes}")
     catch_discover_tests(test_${stage}_hidden TEST_PREFIX "${stage} hidden: " PROPERTIES TIMEOUT 120 LABELS solutions)
     set(hidden_objects $<TARGET_OBJECTS:physlab_${stage}_hidden>)
   endif()
 
-  # The instructor's side of a graded link: tests, framework objects, earlier stages' reference.
+  # The instructor's side of a graded link: tests, framework objects, earlier stages' reference,
+  # and the reference's object of each file of this stage (partial credit: see above).
+  set(reference_units "")
+  if(PHYSLAB_HAVE_SOLUTIONS)
+    foreach(unit IN LISTS ref_units)
+      if(reference_units)
+        string(APPEND reference_units ", ")
+      endif()
+      string(APPEND reference_units "\"${unit}\": \"$<TARGET_OBJECTS:physlab_${stage}_ref_${unit}>\"")
+    endforeach()
+  endif()
   set(dep_files "")
   foreach(dep IN LISTS closure)
     list(APPEND dep_files $<TARGET_FILE:physlab_${dep}_ref>)
@@ -245,7 +305,8 @@ function(physlab_add_lab stage)
   \"tests\": [\"$<JOIN:$<TARGET_OBJECTS:physlab_${stage}_tests>,\",\">\"],
   \"hidden\": [$<$<BOOL:${hidden}>:\"$<JOIN:${hidden_objects},\",\">\">],
   \"framework\": [$<$<BOOL:${framework}>:\"$<JOIN:${framework_objects},\",\">\">],
-  \"depends\": [$<$<BOOL:${closure}>:\"$<JOIN:${dep_files},\",\">\">]
+  \"depends\": [$<$<BOOL:${closure}>:\"$<JOIN:${dep_files},\",\">\">],
+  \"reference\": {${reference_units}}
 }
 ")
 

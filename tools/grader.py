@@ -169,6 +169,24 @@ class TestCase:
         return "hidden" in self.tags
 
     @property
+    def sections(self) -> list:
+        """The handout sections whose functions the test grades, from its [sec=N] tags."""
+        return sorted({int(t[4:]) for t in self.tags if re.fullmatch(r"sec=\d+", t)})
+
+    @property
+    def units(self) -> frozenset:
+        """The lab files (names without .cpp) whose functions the test grades: with the reference
+        of the lab's other files, a finished file earns its tests' points (partial credit)."""
+        table = section_files(self.stage)
+        return frozenset(table[s] for s in self.sections if s in table)
+
+    @property
+    def unit(self):
+        """The one lab file the test grades, or None when it grades several (a scene): such a test
+        runs with all of the student's files of the lab."""
+        return next(iter(self.units)) if len(self.units) == 1 else None
+
+    @property
     def passed(self) -> bool:
         return self.status == "passed"
 
@@ -179,6 +197,40 @@ class StageResult:
     tests: list = field(default_factory=list)
     compile_error: str = ""
     notes: list = field(default_factory=list)
+
+
+SECTIONS_RE = re.compile(r"^// Lab \d+, sections? ([0-9, and-]+):")
+
+
+@functools.lru_cache(maxsize=None)
+def section_files(stage: str) -> dict:
+    """Handout section -> the lab file (name without .cpp) that holds its functions, read from the
+    first line of each stub ("// Lab 4, sections 2-4 and 7: ..."). The instructor's stubs, never
+    a submission's files."""
+    table = {}
+    for path in sorted((ROOT / "labs" / stage).glob("*.cpp")):
+        first = path.read_text(encoding="utf-8", errors="replace").split("\n", 1)[0]
+        m = SECTIONS_RE.match(first)
+        for low, high in re.findall(r"(\d+)(?:-(\d+))?", m.group(1) if m else ""):
+            for number in range(int(low), int(high or low) + 1):
+                table[number] = path.stem
+    return table
+
+
+def tag_problems(results: list) -> list:
+    """Graded tests whose [sec=N] tags do not name a section of their lab's files: without one,
+    partial credit and the handout hint cannot place them."""
+    problems = []
+    for r in results:
+        for t in r.tests:
+            if not t.graded:
+                continue
+            unknown = [s for s in t.sections if s not in section_files(r.stage)]
+            if not t.sections or unknown:
+                why = f"section {', '.join(map(str, unknown))} is in no lab file" if unknown else \
+                      "no [sec=N] tag naming the handout section it grades"
+                problems.append(f"lab {r.stage}: {t.name}: {why}")
+    return problems
 
 
 def discover_stages(root: Path) -> list:
@@ -532,35 +584,49 @@ SYMBOL = {"passed": "PASS", "failed": "FAIL", "not implemented": "TODO", "timed 
           "crashed": "CRSH", "not compiled": "COMP", "not run": "----"}
 
 
-# Words too common to tie a test's group to a handout section
-COMMON_WORDS = {"the", "a", "an", "of", "and", "on", "in", "with", "to", "its", "at", "by", "for"}
-
-
 @functools.lru_cache(maxsize=None)
 def handout_sections(stage: str) -> tuple:
-    """The lab's handout (path relative to the tree) and its numbered sections (number, title)."""
+    """The lab's handout (path relative to the tree) and its numbered sections {number: title}."""
     found = sorted((ROOT / "docs").glob(f"lab{stage[:2]}_*.md"))
     if not found:
-        return None, ()
+        return None, {}
     text = found[0].read_text(encoding="utf-8", errors="replace")
-    sections = tuple(re.findall(r"^## (\d+)\. (.+?)(?: \{#\w+\})?$", text, re.MULTILINE))
-    return found[0].relative_to(ROOT), sections
+    sections = re.findall(r"^## (\d+)\. (.+?)(?: \{#\w+\})?$", text, re.MULTILINE)
+    return found[0].relative_to(ROOT), {int(number): title for number, title in sections}
 
 
-def handout_hint(stage: str, name: str) -> str:
-    """Where the handout explains what a failed test checks: the numbered section whose title
-    shares most words with the test's group (the name before its first colon), else its Tests
-    section."""
-    path, sections = handout_sections(stage)
-    if path is None:
+def handout_hint(case: TestCase) -> str:
+    """Where the handout explains what a failed test checks, and which of the student's files hold
+    the functions it grades: from the test's [sec=N] tags."""
+    path, titles = handout_sections(case.stage)
+    if path is None or not case.sections:
         return ""
-    group = name.split(":", 1)[0].lower() if ":" in name else ""
-    words = set(re.findall(r"[a-z]+", group)) - COMMON_WORDS
-    best = max(((len(words & (set(re.findall(r"[a-z]+", title.lower())) - COMMON_WORDS)), number, title)
-                for number, title in sections), default=(0, "", ""))
-    if best[0] > 0:
-        return f"handout: {path}, section {best[1]} ({best[2]})"
-    return f"handout: {path}, section Tests (what each group checks)"
+    named = [f"{n} ({titles[n]})" if n in titles else str(n) for n in case.sections]
+    where = f"section {named[0]}" if len(named) == 1 else \
+        "sections " + (", ".join(named) if len(named) <= 2 else ", ".join(map(str, case.sections)))
+    files = ", ".join(f"labs/{case.stage}/{u}.cpp" for u in sorted(case.units))
+    return f"handout: {path}, {where}; your code: {files}"
+
+
+WAITS_RE = re.compile(r"not implemented: (\S+) \(see Lab (\d+) handout, sections? (\d+)")
+
+
+def waits_for(case: TestCase) -> str:
+    """For a test stopped by an unwritten function outside the files it grades: which function,
+    and that grading uses the reference there. Empty otherwise."""
+    m = WAITS_RE.search(case.output)
+    if not m:
+        return ""
+    function, lab, section = m.group(1), m.group(2), int(m.group(3))
+    if lab != case.stage[:2].lstrip("0"):
+        return (f"waits for {function} of Lab {lab}, not written yet in your copy (graded with the "
+                f"reference of Lab {lab})")
+    unit = section_files(case.stage).get(section)
+    if unit is None or unit in case.units:
+        return ""
+    return (f"waits for {function} ({unit}.cpp), not written yet: this test grades "
+            f"{', '.join(sorted(u + '.cpp' for u in case.units))}, and grading runs it with the "
+            f"reference's {unit}.cpp")
 
 
 def report(results: list, seed: int, title: str) -> str:
@@ -583,10 +649,13 @@ def report(results: list, seed: int, title: str) -> str:
             extra = " [hidden]" if t.hidden else (" [framework]" if not t.graded else "")
             out.append(f" {SYMBOL[t.status]} {pts:>6}  {t.name}{extra}")
             if not t.passed and t.status != "not compiled":
+                waiting = waits_for(t) if t.status == "not implemented" else ""
+                if waiting:
+                    out.append("            " + waiting)
                 out += ["            " + l for l in t.output.splitlines()[:12]]
                 # A stub's message names its section already; a wrong answer gets the pointer here
                 if t.status != "not implemented" and not t.hidden:
-                    out.append("            " + handout_hint(r.stage, t.name))
+                    out.append("            " + handout_hint(t))
         out.append("")
     out.append(f"TOTAL: {earned:g} / {total:g} points")
     return clean("\n".join(out))
@@ -655,6 +724,13 @@ def executables(build: Path, stage: str, variant: str) -> list:
     return found
 
 
+def own_file_executable(exe: Path, case: TestCase) -> Path:
+    """Where a test of one lab file runs: test_NN_labs_<file>, that student file with the
+    reference of the lab's others (built where the reference is at hand), else `exe`."""
+    mixed = exe.with_name(f"{exe.name}_{case.unit}")
+    return mixed if exe.name.endswith("_labs") and case.unit and mixed.exists() else exe
+
+
 def cmd_run(args) -> int:
     """Run already built tests; print the report; optionally write results.json."""
     start = time.monotonic()
@@ -675,7 +751,7 @@ def cmd_run(args) -> int:
                 continue
             cases = list_tests(exe, stage)
             result.tests += cases
-            jobs += [(exe, c) for c in cases]
+            jobs += [(own_file_executable(exe, c), c) for c in cases]
         results.append(result)
     if args.variant == "solutions" and (build / "test_common").exists():
         common = StageResult("common", list_tests(build / "test_common", "common"))
@@ -690,6 +766,7 @@ def cmd_run(args) -> int:
         shutil.rmtree(scratch, ignore_errors=True)
     title = f"PhysLab tests against {args.variant}/"
     text = report(results, args.seed, title)
+    mistagged = tag_problems(results) if args.variant == "solutions" else []
     if args.out:
         write_outputs(Path(args.out), text, gradescope_json(results, time.monotonic() - start))
     if args.expect == "fail":
@@ -698,6 +775,9 @@ def cmd_run(args) -> int:
         print(text)
         passed, failed = summary_line(results)
         print(f"\n{passed} passed, {failed} failed")
+    for problem in mistagged:
+        print(f"  TAG: {problem}")
+    failed += len(mistagged)
     if args.summary:
         graded = [t for r in results for t in r.tests if t.graded]
         graded_passed = sum(t.passed for t in graded)
@@ -769,12 +849,12 @@ class Kit:
     def preprocess_command(self, include: Path, source: Path, out: Path) -> list:
         return self.compiler(include) + ["-E", str(source), "-o", str(out)]
 
-    def link_command(self, stage: str, tests: str, student: list, exe: Path) -> list:
+    def link_command(self, stage: str, tests: str, student: list, exe: Path, reference=()) -> list:
         spec = self.stages[stage]
         # The instructor's objects come first and its libraries whole: wherever the student's
         # objects and the instructor's define the same inline function, the instructor's is used.
         cmd = [self.toolchain["compiler"]] + self.toolchain["flags"].split() + ["-o", str(exe)]
-        cmd += self.toolchain["main"] + spec[tests] + spec["framework"]
+        cmd += self.toolchain["main"] + spec[tests] + spec["framework"] + list(reference)
         cmd += ["-Wl,--whole-archive"] + spec["depends"] + [self.toolchain["common"]]
         return cmd + ["-Wl,--no-whole-archive"] + [str(o) for o in student] + self.toolchain["libraries"]
 
@@ -1084,11 +1164,12 @@ class Builder:
         roots = [str(self.shared)] + self.system
         return any(real == r or real.startswith(r.rstrip("/") + "/") for r in roots)
 
-    def link(self, stage: str, tests: str, objects: list, exe: Path) -> str:
-        """Links; returns '' or an explanation naming the missing or doubly defined functions."""
+    def link(self, stage: str, tests: str, objects: list, exe: Path, reference: list = ()) -> str:
+        """Links the student's `objects` (and the instructor's `reference` objects of the stage's
+        other files); returns '' or an explanation naming the missing or doubly defined functions."""
         budget = min(120.0, self.deadline.left())
         try:
-            proc = subprocess.run(self.kit.link_command(stage, tests, objects, exe), capture_output=True,
+            proc = subprocess.run(self.kit.link_command(stage, tests, objects, exe, reference), capture_output=True,
                                   text=True, errors="replace", timeout=max(budget, 1.0))
         except subprocess.TimeoutExpired:
             return "linking stopped at the grading deadline"
@@ -1211,8 +1292,11 @@ def find_labs(submission: Path):
 
 
 def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult, hidden: list,
-                run_dir: Path) -> tuple:
-    """Compiles, checks and links one stage; returns (visible exe, hidden exe) or (None, None)."""
+                run_dir: Path):
+    """Compiles, checks and links one stage. Returns its executables, {"tests": {unit: path},
+    "hidden": {unit: path}} where unit None is every student file of the lab and a file's name its
+    own executable (link_own_files), the visible ones copied to run_dir; or None when the lab did
+    not compile or link."""
     stage = result.stage
     sources = submitted_sources(labs, stage, result.notes)
     stubs = {n: (ROOT / "labs" / stage / n).read_bytes() for n in sources}
@@ -1224,7 +1308,7 @@ def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult
         raise RuntimeError(f"the instructor's stubs of {stage} do not compile")
     if errors:
         result.compile_error = "\n".join(errors)
-        return None, None
+        return None
     stub_defined = kit.defined_by([str(s.obj) for s in stub_objs.values()])
     own_defined = kit.defined_by([str(c.obj) for c in done.values()])
     problems = []
@@ -1232,27 +1316,62 @@ def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult
         problems += [f"{name}: {p}" for p in check_object(kit, stage, c.obj, stub_defined, own_defined)]
     if problems:
         result.compile_error = "refused:\n" + "\n".join(problems[:30])
-        return None, None
+        return None
     warnings = "\n".join(c.log for c in done.values() if c.log.strip())
     if warnings:
         result.notes.append("compiler warnings:\n" + warnings[-OUTPUT_LIMIT:])
-    objects = [c.obj for c in done.values()]
+    objects = {name[:-len(".cpp")]: c.obj for name, c in done.items()}
     exe = builder.private / stage / f"test_{stage}"
-    error = builder.link(stage, "tests", objects, exe)
+    error = builder.link(stage, "tests", list(objects.values()), exe)
     if error:
         result.compile_error = error
-        return None, None
-    hidden_exe = None
+        return None
+    exes = {"tests": {None: exe}, "hidden": {}}
     if hidden:
         hidden_exe = builder.private / stage / f"test_{stage}_hidden"
-        if builder.link(stage, "hidden", objects, hidden_exe):
-            hidden_exe = None
+        if builder.link(stage, "hidden", list(objects.values()), hidden_exe):
             for case in hidden:
                 case.status, case.output = "not compiled", "the hidden tests did not link"
-    visible = run_dir / exe.name
-    shutil.copyfile(exe, visible)
-    os.chmod(visible, 0o755)
-    return visible, hidden_exe
+        else:
+            exes["hidden"][None] = hidden_exe
+    link_own_files(builder, kit, result, objects, exes)
+    for unit, path in exes["tests"].items():
+        visible = run_dir / path.name
+        shutil.copyfile(path, visible)
+        os.chmod(visible, 0o755)
+        exes["tests"][unit] = visible
+    return exes
+
+
+def link_own_files(builder: Builder, kit: Kit, result: StageResult, objects: dict, exes: dict) -> None:
+    """Partial credit: a test of one lab file runs with the student's object of that file and the
+    reference's objects of the lab's other files, so a finished file earns its points whatever
+    else is unwritten. A file that needs another of the student's files (or defines a name the
+    reference defines too) does not link alone: its tests then run with all of them, as noted."""
+    stage = result.stage
+    reference = kit.stages[stage].get("reference", {})
+    wanted = sorted({("hidden" if c.hidden else "tests", c.unit) for c in result.tests
+                     if c.unit in objects and c.unit in reference})
+    wanted = [(kind, unit) for kind, unit in wanted if None in exes[kind]]
+
+    def link(job):
+        kind, unit = job
+        path = builder.private / stage / f"test_{stage}{'_hidden' if kind == 'hidden' else ''}_{unit}"
+        others = [reference[u] for u in sorted(reference) if u != unit]
+        return builder.link(stage, kind, [objects[unit]], path, others), path
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=len(builder.sandbox.slots)) as pool:
+        linked = list(pool.map(link, wanted))
+    alone = set()
+    for (kind, unit), (error, path) in zip(wanted, linked):
+        if not error:
+            exes[kind][unit] = path
+        elif unit not in alone:
+            alone.add(unit)
+            reason = error.splitlines()[0]
+            result.notes.append(f"{unit}.cpp does not link with the reference of this lab's other files "
+                                f"({reason}): its tests ran with all of your files of the lab, so they "
+                                f"need those written too")
 
 
 def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> dict:
@@ -1281,14 +1400,14 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> 
             hidden_ref = kit.build / f"test_{stage}_hidden"
             hidden = list_tests(hidden_ref, stage) if hidden_ref.exists() else []
             result = StageResult(stage, visible + hidden)
-            visible_exe, hidden_exe = build_stage(builder, kit, labs, result, hidden, run_dir)
-            if visible_exe is None:
+            exes = build_stage(builder, kit, labs, result, hidden, run_dir)
+            if exes is None:
                 for case in result.tests:
                     case.status, case.output = "not compiled", result.compile_error[-OUTPUT_LIMIT:]
             else:
-                visible_jobs += [(visible_exe, c) for c in visible]
-                if hidden_exe:
-                    hidden_jobs.append((hidden_exe, hidden))
+                visible_jobs += [(exes["tests"].get(c.unit, exes["tests"][None]), c) for c in visible]
+                if None in exes["hidden"]:
+                    hidden_jobs += [(exes["hidden"].get(c.unit, exes["hidden"][None]), c) for c in hidden]
             results.append(result)
         # Every visible test first; hidden tests only after every process of those runs is gone
         # and their files removed, so no student process can carry a hidden test's text into a
@@ -1296,12 +1415,13 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> 
         make_homes(sandbox, shared)
         run_cases(sandbox, visible_jobs, args.seed, args.timeout, deadline, private, shared, args.jobs)
         sandbox.finish()
-        jobs = []
-        for hidden_exe, cases in hidden_jobs:
-            copy = run_dir / hidden_exe.name
-            shutil.copyfile(hidden_exe, copy)
-            os.chmod(copy, 0o755)
-            jobs += [(copy, c) for c in cases]
+        jobs, copies = [], {}
+        for hidden_exe, case in hidden_jobs:
+            if hidden_exe not in copies:
+                copies[hidden_exe] = run_dir / hidden_exe.name
+                shutil.copyfile(hidden_exe, copies[hidden_exe])
+                os.chmod(copies[hidden_exe], 0o755)
+            jobs.append((copies[hidden_exe], case))
         make_homes(sandbox, shared)
         run_cases(sandbox, jobs, args.seed, args.timeout, deadline, private, shared, args.jobs)
         sandbox.finish()

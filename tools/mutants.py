@@ -5,7 +5,8 @@ Each tests/hidden/mutants/NN_name/<bug>.patch is a unified diff against a refere
 solutions/NN_name, starting with a comment line "# <the bug>". For every patch this script
 applies it to a scratch copy of the reference, builds the lab's test executables against that
 copy (one build folder, configured once, so each mutant recompiles one file), and runs the lab's
-graded tests, hidden ones included, with a few seeds. A mutant is *caught* when some graded test fails, *survived*
+graded tests, hidden ones included, with a few seeds. A mutant is *caught* when some graded test
+that grades its file fails (as the grader links it: see grades()), *survived*
 when all pass, and *invalid* when it does not apply or does not compile. Called by
 `./physlab mutants [NN...]`; see `mutants.py --help`.
 """
@@ -19,6 +20,9 @@ import sys
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from grader import section_files  # noqa: E402  (the grader's table of handout sections and files)
 
 ROOT = Path(__file__).resolve().parent.parent
 MUTANTS = ROOT / "tests" / "hidden" / "mutants"
@@ -119,8 +123,8 @@ def build_targets(build: Path, targets: list, jobs: int) -> subprocess.Completed
 
 
 def failing_tests(build: Path, targets: list, stage: str, seed: int, timeout: float) -> list:
-    """Names of the lab's graded tests that fail with this seed; a crash or a hang counts as a
-    failure of the whole run (named by what happened)."""
+    """(name, tags) of the lab's graded tests that fail with this seed; a crash or a hang counts
+    as a failure of the whole run (named by what happened, tags None)."""
     failed = []
     for target in targets:
         failed += failing_in(build / target, stage, seed, timeout)
@@ -133,17 +137,28 @@ def failing_in(exe: Path, stage: str, seed: int, timeout: float) -> list:
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout,
                               errors="replace")
     except subprocess.TimeoutExpired:
-        return [f"({exe.name} timed out after {timeout:g} s)"]
+        return [(f"({exe.name} timed out after {timeout:g} s)", None)]
     try:
         tree = ET.fromstring(proc.stdout)
     except ET.ParseError:
-        return [f"({exe.name} crashed: exit status {proc.returncode})"]
-    failed = [case.get("name") for case in tree.iter("TestCase")
+        return [(f"({exe.name} crashed: exit status {proc.returncode})", None)]
+    failed = [(case.get("name"), case.get("tags", "")) for case in tree.iter("TestCase")
               if case.find("OverallResult") is not None
               and case.find("OverallResult").get("success") != "true"]
     if not failed and proc.returncode != 0:
-        failed = [f"({exe.name} exit status {proc.returncode})"]
+        failed = [(f"({exe.name} exit status {proc.returncode})", None)]
     return failed
+
+
+def grades(stage: str, tags, units: set) -> bool:
+    """Whether a failing test costs the mutated files `units` points as the grader links it: a
+    test of one file runs with the reference of the lab's other files (partial credit), a test of
+    several with all of the student's; a crashed run (tags None) counts."""
+    if tags is None:
+        return True
+    table = section_files(stage)
+    graded = {table[int(n)] for n in re.findall(r"\[sec=(\d+)\]", tags) if int(n) in table}
+    return len(graded) != 1 or bool(graded & units)
 
 
 def check_reference(build: Path, targets: list, stage: str, seeds: list, jobs: int,
@@ -156,7 +171,8 @@ def check_reference(build: Path, targets: list, stage: str, seeds: list, jobs: i
     for seed in seeds:
         failed = failing_tests(build, targets, stage, seed, timeout)
         if failed:
-            sys.exit(f"mutants: the reference of {stage} fails with seed {seed}: {', '.join(failed)}")
+            sys.exit(f"mutants: the reference of {stage} fails with seed {seed}: "
+                     f"{', '.join(name for name, _ in failed)}")
 
 
 def judge(mutant: Mutant, build: Path, targets: list, labs: Path, seeds: list, jobs: int,
@@ -173,8 +189,10 @@ def judge(mutant: Mutant, build: Path, targets: list, labs: Path, seeds: list, j
             mutant.status = "invalid"
             mutant.detail = "does not build: " + (errors or output)[-OUTPUT_LIMIT:]
             return
+        units = {Path(f).stem for f in mutant.files}
         for seed in seeds:
-            failed = failing_tests(build, targets, mutant.stage, seed, timeout)
+            failed = [name for name, tags in failing_tests(build, targets, mutant.stage, seed, timeout)
+                      if grades(mutant.stage, tags, units)]
             if failed:
                 mutant.status, mutant.catchers = "caught", failed
                 mutant.detail = f"seed {seed}"
