@@ -27,6 +27,20 @@
 // verdict is only as trustworthy as the student's own code, which is enough for a student's own
 // `./physlab test`; the grader refuses to grade with a build whose runner has no notary
 // (toolchain.json "notary": false).
+#include <string>
+
+// How every double and float in a report reads (expansions, Approx, CAPTURE): the shortest form
+// that reads back as the same value, e.g. 1e-12, 2.5, 0.1, 2.0. Catch2 2.13 prints them fixed-point
+// with StringMaker<double>::precision digits, so a tolerance of 1e-12 read "0.0" and two different
+// values could read the same. Its StringMaker<double>::convert and <float>::convert call the
+// function template Catch::fpToString(value, precision); these exact overloads, declared before the
+// implementation below is compiled, are chosen over it (precision is not used: every value shows
+// as many digits as it needs). test_common checks that they are the ones called.
+namespace Catch {
+std::string fpToString(double value, int precision);
+std::string fpToString(float value, int precision);
+}  // namespace Catch
+
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
@@ -40,14 +54,38 @@
 #endif
 
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
-#include <string>
+#include <limits>
+#include <type_traits>
 
 namespace {
+
+// The shortest of printf's %.Ng forms (N from the type's digits10 up) that reads back as `value`;
+// ".0" is added to whole numbers so that they read as floating point.
+template <typename T>
+std::string shortestText(T value) {
+  char text[48];
+  int digits = std::numeric_limits<T>::digits10;
+  const auto readsBack = [&] {
+    if (std::isnan(value)) return true;
+    if constexpr (std::is_same_v<T, float>) {
+      return std::strtof(text, nullptr) == value;
+    } else {
+      return std::strtod(text, nullptr) == value;
+    }
+  };
+  do {
+    std::snprintf(text, sizeof text, "%.*g", digits, static_cast<double>(value));
+  } while (!readsBack() && ++digits <= std::numeric_limits<T>::max_digits10);
+  std::string out = text;
+  if (out.find_first_not_of("-0123456789") == std::string::npos) out += ".0";
+  return out;
+}
 
 // The child's side of the channel: whether it runs under the grader, and the test it must run.
 struct Channel {
@@ -240,6 +278,9 @@ int listTests() {
 }
 
 }  // namespace
+
+std::string Catch::fpToString(double value, int) { return shortestText(value); }
+std::string Catch::fpToString(float value, int) { return shortestText(value); }
 
 CATCH_REGISTER_LISTENER(VerdictListener)
 
