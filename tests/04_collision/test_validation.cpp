@@ -307,7 +307,8 @@ TEST_CASE("bad input: sphere routines refuse spoiled spheres, boxes and planes a
   const Pose pa = at(Vec3::Zero()), pb = at(Vec3(1.2, 0, 0)), high = at(Vec3(0, 0, 0.5));
   checkPoses([&](const Pose& a, const Pose& b) { return collideSphereSphere(big, a, small, b); }, pa, pb);
   checkPoses([&](const Pose& a, const Pose&) { return collideSpherePlane(big, a, ground); }, high, Pose{}, false);
-  checkPoses([&](const Pose& a, const Pose& b) { return collideSphereBox(small, a, box, b); }, at(Vec3(0, 0, 1.3)), Pose{});
+  checkPoses([&](const Pose& a, const Pose& b) { return collideSphereBox(small, a, box, b); }, at(Vec3(0, 0, 1.3)),
+             Pose{});
   checkShapes([&](const Sphere& a, const Sphere& b) { return collideSphereSphere(a, pa, b, pb); }, big, badSpheres(big),
               small, badSpheres(small));
   checkShapes([&](const Sphere& a, const Plane& b) { return collideSpherePlane(a, high, b); }, big, badSpheres(big),
@@ -319,7 +320,8 @@ TEST_CASE("bad input: sphere routines refuse spoiled spheres, boxes and planes a
 TEST_CASE("bad input: capsule routines and closest points of segments refuse bad shapes, poses and ends, naming them",
           "[lab04][pts=1][sec=3]") {
   // Valid: crossed segments meet at their middles
-  const std::array<double, 2> st = closestSegmentParameters(Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 1), Vec3(0, 1, 1));
+  const Vec3 ends[4] = {Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 1), Vec3(0, 1, 1)};
+  const std::array<double, 2> st = closestSegmentParameters(ends[0], ends[1], ends[2], ends[3]);
   CHECK(st[0] == Approx(0.5));
   CHECK(st[1] == Approx(0.5));
   const Capsule upright(0.5, 1.0);
@@ -329,7 +331,6 @@ TEST_CASE("bad input: capsule routines and closest points of segments refuse bad
   lying.q = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()));
   CHECK(collideCapsuleSphere(upright, pa, ball, pb).points[0].depth == Approx(0.2));
   CHECK(collideCapsuleCapsule(upright, pa, upright, lying).points[0].depth == Approx(0.2));
-  const Vec3 ends[4] = {Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 1), Vec3(0, 1, 1)};
   const char* names[4] = {"segment end p1", "segment end q1", "segment end p2", "segment end q2"};
   for (int k = 0; k < 4; ++k) {
     for (const double bad : {kNan, kInf}) {
@@ -348,7 +349,8 @@ TEST_CASE("bad input: capsule routines and closest points of segments refuse bad
               badCapsules(upright), upright, badCapsules(upright));
 }
 
-TEST_CASE("bad input: a box on a plane refuses a spoiled box or plane and a bad pose, naming them", "[lab04][pts=1][sec=4]") {
+TEST_CASE("bad input: a box on a plane refuses a spoiled box or plane and a bad pose, naming them",
+          "[lab04][pts=1][sec=4]") {
   const Box box(Vec3(1.0, 1.0, 1.0));
   const Plane ground(Vec3::UnitZ(), 0.0);
   const Manifold m = collideBoxPlane(box, at(Vec3(0, 0, 0.9)), ground);
@@ -417,8 +419,10 @@ TEST_CASE("bad input: convex polyhedra changed after construction and bad poses 
   REQUIRE(m.count == 4);
   for (int i = 0; i < 4; ++i) CHECK(m.points[i].depth == Approx(0.1));
   checkPoses([&](const Pose& a, const Pose& b) { return collideConvexConvex(cube, a, cube, b); }, above, below);
-  checkShapes([&](const ConvexPolyhedron& a, const ConvexPolyhedron& b) { return collideConvexConvex(a, above, b, below); },
-              cube, badPolyhedra(cube), cube, badPolyhedra(cube));
+  auto collideCubes = [&](const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
+    return collideConvexConvex(a, above, b, below);
+  };
+  checkShapes(collideCubes, cube, badPolyhedra(cube), cube, badPolyhedra(cube));
 }
 
 TEST_CASE("bad input: the triangle test refuses spoiled triangles and bad poses, naming them", "[lab04][pts=1][sec=7]") {
@@ -496,7 +500,8 @@ TEST_CASE("bad input: shapes apart are refused all the same when spoiled, before
   CHECK_THROWS_WITH(collideSpherePlane(sphere, origin, ground), Contains("shape a: sphere radius"));
   CHECK_THROWS_WITH(collideSphereBox(ball, origin, box, far), Contains("shape b: box half extent 1"));
   CHECK_THROWS_WITH(collideCapsuleSphere(capsule, origin, ball, far), Contains("shape a: capsule half height"));
-  CHECK_THROWS_WITH(collideCapsuleCapsule(Capsule(0.5, 1.0), origin, capsule, far), Contains("shape b: capsule half height"));
+  CHECK_THROWS_WITH(collideCapsuleCapsule(Capsule(0.5, 1.0), origin, capsule, far),
+                    Contains("shape b: capsule half height"));
   CHECK_THROWS_WITH(collideBoxPlane(box, origin, ground), Contains("shape a: box half extent 1"));
   CHECK_THROWS_WITH(collideBoxBox(Box(Vec3(1, 1, 1)), origin, box, far), Contains("shape b: box half extent 1"));
   ConvexPolyhedron cube = ConvexPolyhedron::box(Vec3(0.5, 0.5, 0.5));
