@@ -5,6 +5,9 @@
 namespace physlab {
 
 DistanceResult gjkDistance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): after refusing planes: validateShape(a, "shape a") and validatePose(pose_a, "pose_a")
+  //   (collision.hpp), the same for b.
   // Start from the support point along the line of centres
   // TODO(student): a simplex vertex is w = s_A(-d) - s_B(d) from coreSupport(), stored with both
   //   support points; refuse planes (InvalidInput).

@@ -6,6 +6,8 @@
 namespace physlab {
 
 Manifold collideSphereSphere(const Sphere& a, const Pose& pose_a, const Sphere& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a") and validatePose(pose_a, "pose_a") (collision.hpp), the same for b.
   // Compare the distance of the centres with the sum of the radii
   // TODO(student): depth = r_A + r_B - |x_A - x_B|; none when negative. Normal (x_A - x_B)/|x_A -
   //   x_B| (+z if the centres coincide); position = midpoint of x_A - r_A n and x_B + r_B n; id 0.
@@ -13,6 +15,9 @@ Manifold collideSphereSphere(const Sphere& a, const Pose& pose_a, const Sphere& 
 }
 
 Manifold collideSpherePlane(const Sphere& a, const Pose& pose_a, const Plane& b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a"), validatePose(pose_a, "pose_a") and validateShape(b, "shape b")
+  //   (collision.hpp); the plane has no pose.
   // Measure the centre's height above the plane
   // TODO(student): height = n . x - d; depth = r - height, none when negative.
   // Put the point midway between the sphere's lowest point and the plane
@@ -22,6 +27,8 @@ Manifold collideSpherePlane(const Sphere& a, const Pose& pose_a, const Plane& b)
 }
 
 Manifold collideSphereBox(const Sphere& a, const Pose& pose_a, const Box& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a") and validatePose(pose_a, "pose_a") (collision.hpp), the same for b.
   // Clamp the centre, in the box frame, to the box
   // TODO(student): c = pose_b.toBody(x_A); closest = c clamped component-wise to [-h, h] (cwiseMax,
   //   cwiseMin).
@@ -38,6 +45,8 @@ Manifold collideSphereBox(const Sphere& a, const Pose& pose_a, const Box& b, con
 }
 
 std::array<double, 2> closestSegmentParameters(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
+  // Refuse ends that are not finite: every parameter would be NaN
+  // TODO(student): requireFinite() (error.hpp) on each end, naming it: "segment end p1", ..., "segment end q2".
   // Handle segments that are single points
   // TODO(student): with d1 = q1 - p1, d2 = q2 - p2: when |d1| or |d2| is 0 only one parameter is
   //   free (project and clamp).
@@ -51,6 +60,8 @@ std::array<double, 2> closestSegmentParameters(const Vec3& p1, const Vec3& q1, c
 }
 
 Manifold collideCapsuleSphere(const Capsule& a, const Pose& pose_a, const Sphere& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a") and validatePose(pose_a, "pose_a") (collision.hpp), the same for b.
   // Find the point of the core segment closest to the sphere's centre
   // TODO(student): capsule.segment(pose) gives the two ends; project the centre on the segment and
   //   clamp the parameter to [0, 1].
@@ -60,6 +71,8 @@ Manifold collideCapsuleSphere(const Capsule& a, const Pose& pose_a, const Sphere
 }
 
 Manifold collideCapsuleCapsule(const Capsule& a, const Pose& pose_a, const Capsule& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a") and validatePose(pose_a, "pose_a") (collision.hpp), the same for b.
   // Parallel cores: one contact at each end of their overlap, so that a capsule can lie still
   // TODO(student): when |d_A x d_B|^2 <= 1e-12 |d_A|^2 |d_B|^2, project B's ends on A's segment; if
   //   the overlap [lo, hi] of parameters is longer than 1e-9, a ball contact at each end (ids 1 and
@@ -71,6 +84,9 @@ Manifold collideCapsuleCapsule(const Capsule& a, const Pose& pose_a, const Capsu
 }
 
 Manifold collideBoxPlane(const Box& a, const Pose& pose_a, const Plane& b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a"), validatePose(pose_a, "pose_a") and validateShape(b, "shape b")
+  //   (collision.hpp); the plane has no pose.
   // Collect every corner below the plane, midway between it and the plane
   // TODO(student): corner i = (+-h_x, +-h_y, +-h_z) with bit k of i set for the + side; height = n
   //   . p - d; when height <= 0 add p - height/2 n with depth -height and id i to a ContactPolygon.
@@ -80,6 +96,8 @@ Manifold collideBoxPlane(const Box& a, const Pose& pose_a, const Plane& b) {
 }
 
 bool trianglesIntersect(const Triangle& a, const Pose& pose_a, const Triangle& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a") and validatePose(pose_a, "pose_a") (collision.hpp), the same for b.
   // Look for an edge of either triangle that pierces the other: intersecting triangles have
   // two such edges (two of one, or one of each)
   // TODO(student): for each edge [p, q]: signed distances of p and q to the other triangle's plane

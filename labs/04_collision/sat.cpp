@@ -7,6 +7,9 @@ namespace physlab {
 
 ContactPolygon clipPolygon(const ContactPolygon& polygon, const Vec3& plane_normal, double plane_offset,
                            std::uint32_t plane_id) {
+  // Refuse a count that would read past the points, and a point or plane that is not finite
+  // TODO(student): validatePolygon(polygon, "clipPolygon polygon") (collision.hpp); requireFinite() (error.hpp) on
+  //   plane_normal and InvalidInput unless plane_offset is finite, naming each ("clipPolygon plane_normal", ...).
   // Keep the edge's start when it is inside
   // TODO(student): for each edge (p, q) of the polygon (q the next point, cyclically): d = m . p -
   //   o; keep p when d <= 0.
@@ -17,6 +20,9 @@ ContactPolygon clipPolygon(const ContactPolygon& polygon, const Vec3& plane_norm
 }
 
 Manifold reduceContacts(const Vec3& normal, const ContactPolygon& candidates) {
+  // Refuse a count that would read past the points, and a point or normal that is not finite
+  // TODO(student): requireFinite(normal, "reduceContacts normal") (error.hpp) and validatePolygon(candidates,
+  //   "reduceContacts candidates") (collision.hpp).
   // Start from the deepest point
   // TODO(student): 4 or fewer candidates are returned as they are; otherwise the largest depth.
   // Add the point farthest from it
@@ -31,6 +37,8 @@ Manifold reduceContacts(const Vec3& normal, const ContactPolygon& candidates) {
 }
 
 Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a") and validatePose(pose_a, "pose_a") (collision.hpp), the same for b.
   // Measure the overlap along an axis: radii of both projections minus the centres' distance
   // TODO(student): r_A(L) = sum_i h_i |L . a_i| with a_i the columns of R_A; overlap = r_A + r_B -
   //   |L . (x_A - x_B)|.
@@ -64,6 +72,8 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
 
 Manifold collideConvexConvex(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
                              const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  // TODO(student): validateShape(a, "shape a") and validatePose(pose_a, "pose_a") (collision.hpp), the same for b.
   // Move both into the world
   // TODO(student): pose.toWorld on every vertex (a std::vector each is fine here).
   // Overlap along L, oriented from B to A: the smaller of the two ways the projections overlap

@@ -9,6 +9,9 @@ ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_
                        const Pose& pose_b, const Motion& motion_b, double h, double tolerance) {
   // Refuse a step or tolerance that is not positive: the bracket could never get short enough
   // TODO(student): requirePositive() on h and on tolerance, naming each ("time step h", "tolerance").
+  // Refuse bad shapes, poses and motions here, naming them, rather than at some later time's query
+  // TODO(student): validateShape(a, "shape a"), validatePose(pose_a, "pose_a"), validateMotion(motion_a, "motion_a")
+  //   (collision.hpp), the same for b.
   // Bound how fast any point can approach: the relative speed plus the spin of the far points
   // TODO(student): approachSpeedBound() along the relative velocity's direction gives |v_B - v_A| +
   //   |omega_A| rho_A + |omega_B| rho_B.
@@ -25,6 +28,9 @@ ToiResult toiConservativeAdvancement(const Shape& a, const Pose& pose_a, const M
                                      const Pose& pose_b, const Motion& motion_b, double h, double tolerance) {
   // Refuse a step or tolerance that is not positive: the bracket could never get short enough
   // TODO(student): requirePositive() on h and on tolerance, naming each ("time step h", "tolerance").
+  // Refuse bad shapes, poses and motions here, naming them, rather than at some later time's query
+  // TODO(student): validateShape(a, "shape a"), validatePose(pose_a, "pose_a"), validateMotion(motion_a, "motion_a")
+  //   (collision.hpp), the same for b.
   // Measure the distance and the direction of the closest points at t
   // TODO(student): distance() at advance(pose, motion, t) for both; a hit when it overlaps or is <=
   //   tolerance; n = (point_a - point_b) normalised.

@@ -115,6 +115,11 @@ DistanceResult gjkDistance(const Shape& a, const Pose& pose_a, const Shape& b, c
   if (std::holds_alternative<Plane>(a) || std::holds_alternative<Plane>(b)) {
     throw InvalidInput("gjkDistance: a plane is unbounded; use distance()");
   }
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
   DistanceResult r;
   // Start from the support point along the line of centres
   auto vertex = [&](const Vec3& d) {

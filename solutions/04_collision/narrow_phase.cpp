@@ -42,11 +42,20 @@ bool segmentPiercesTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
 }  // namespace
 
 Manifold collideSphereSphere(const Sphere& a, const Pose& pose_a, const Sphere& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
   // Compare the distance of the centres with the sum of the radii
   return ballContact(pose_a.x, a.radius, pose_b.x, b.radius, 0);
 }
 
 Manifold collideSpherePlane(const Sphere& a, const Pose& pose_a, const Plane& b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
   Manifold m;
   // Measure the centre's height above the plane
   const double height = b.normal.dot(pose_a.x) - b.offset;
@@ -59,6 +68,11 @@ Manifold collideSpherePlane(const Sphere& a, const Pose& pose_a, const Plane& b)
 }
 
 Manifold collideSphereBox(const Sphere& a, const Pose& pose_a, const Box& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
   Manifold m;
   // Clamp the centre, in the box frame, to the box
   const Vec3& h = b.half_extents;
@@ -92,6 +106,11 @@ Manifold collideSphereBox(const Sphere& a, const Pose& pose_a, const Box& b, con
 }
 
 std::array<double, 2> closestSegmentParameters(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
+  // Refuse ends that are not finite: every parameter would be NaN
+  requireFinite(p1, "segment end p1");
+  requireFinite(q1, "segment end q1");
+  requireFinite(p2, "segment end p2");
+  requireFinite(q2, "segment end q2");
   const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
   // Handle segments that are single points
@@ -115,6 +134,11 @@ std::array<double, 2> closestSegmentParameters(const Vec3& p1, const Vec3& q1, c
 }
 
 Manifold collideCapsuleSphere(const Capsule& a, const Pose& pose_a, const Sphere& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
   // Find the point of the core segment closest to the sphere's centre
   const std::array<Vec3, 2> ends = a.segment(pose_a);
   const Vec3 core = closestOnSegment(ends[0], ends[1], pose_b.x);
@@ -123,6 +147,11 @@ Manifold collideCapsuleSphere(const Capsule& a, const Pose& pose_a, const Sphere
 }
 
 Manifold collideCapsuleCapsule(const Capsule& a, const Pose& pose_a, const Capsule& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
   const std::array<Vec3, 2> ea = a.segment(pose_a), eb = b.segment(pose_b);
   const Vec3 da = ea[1] - ea[0], db = eb[1] - eb[0];
   // Parallel cores: one contact at each end of their overlap, so that a capsule can lie still
@@ -147,6 +176,10 @@ Manifold collideCapsuleCapsule(const Capsule& a, const Pose& pose_a, const Capsu
 }
 
 Manifold collideBoxPlane(const Box& a, const Pose& pose_a, const Plane& b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
   // Collect every corner below the plane, midway between it and the plane
   ContactPolygon below;
   for (std::uint32_t i = 0; i < 8; ++i) {
@@ -161,6 +194,11 @@ Manifold collideBoxPlane(const Box& a, const Pose& pose_a, const Plane& b) {
 }
 
 bool trianglesIntersect(const Triangle& a, const Pose& pose_a, const Triangle& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
   std::array<Vec3, 3> p, q;
   for (int i = 0; i < 3; ++i) {
     p[i] = pose_a.toWorld(a.corners[i]);

@@ -46,6 +46,10 @@ double planarDistance2(const Vec3& p, const Vec3& q, const Vec3& n) {
 
 ContactPolygon clipPolygon(const ContactPolygon& polygon, const Vec3& plane_normal, double plane_offset,
                            std::uint32_t plane_id) {
+  // Refuse a count that would read past the points, and a point or plane that is not finite
+  validatePolygon(polygon, "clipPolygon polygon");
+  requireFinite(plane_normal, "clipPolygon plane_normal");
+  if (!std::isfinite(plane_offset)) throw InvalidInput("clipPolygon plane_offset must be finite");
   ContactPolygon out;
   for (int i = 0; i < polygon.count; ++i) {
     const ContactPoint& p = polygon.points[i];
@@ -62,6 +66,9 @@ ContactPolygon clipPolygon(const ContactPolygon& polygon, const Vec3& plane_norm
 }
 
 Manifold reduceContacts(const Vec3& normal, const ContactPolygon& candidates) {
+  // Refuse a count that would read past the points, and a point or normal that is not finite
+  requireFinite(normal, "reduceContacts normal");
+  validatePolygon(candidates, "reduceContacts candidates");
   Manifold m;
   m.normal = normal;
   if (candidates.count <= Manifold::kMaxPoints) {
@@ -111,6 +118,11 @@ Manifold reduceContacts(const Vec3& normal, const ContactPolygon& candidates) {
 }
 
 Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
   const Mat3 Ra = pose_a.q.toRotationMatrix(), Rb = pose_b.q.toRotationMatrix();
   const Vec3 &ha = a.half_extents, &hb = b.half_extents;
   const Vec3 t = pose_a.x - pose_b.x;
@@ -202,6 +214,11 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
 
 Manifold collideConvexConvex(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
                              const Pose& pose_b) {
+  // Refuse a shape changed after construction and a pose that is not finite or not unit
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
   // Move both into the world
   std::vector<Vec3> va(a.vertices.size()), vb(b.vertices.size());
   for (std::size_t i = 0; i < va.size(); ++i) va[i] = pose_a.toWorld(a.vertices[i]);

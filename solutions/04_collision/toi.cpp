@@ -7,12 +7,29 @@
 #include "physlab/error.hpp"
 
 namespace physlab {
+namespace {
+
+// InvalidInput naming the shape, pose or motion (of a or b) that validateShape(), validatePose() or
+// validateMotion() refuses.
+void validateBodies(const Shape& a, const Pose& pose_a, const Motion& motion_a, const Shape& b, const Pose& pose_b,
+                    const Motion& motion_b) {
+  validateShape(a, "shape a");
+  validatePose(pose_a, "pose_a");
+  validateMotion(motion_a, "motion_a");
+  validateShape(b, "shape b");
+  validatePose(pose_b, "pose_b");
+  validateMotion(motion_b, "motion_b");
+}
+
+}  // namespace
 
 ToiResult toiBisection(const Shape& a, const Pose& pose_a, const Motion& motion_a, const Shape& b,
                        const Pose& pose_b, const Motion& motion_b, double h, double tolerance) {
   // Refuse a step or tolerance that is not positive: the bracket could never get short enough
   requirePositive(h, "time step h");
   requirePositive(tolerance, "time-of-impact tolerance");
+  // Refuse bad shapes, poses and motions here, naming them, rather than at some later time's query
+  validateBodies(a, pose_a, motion_a, b, pose_b, motion_b);
   ToiResult result;
   auto overlapAt = [&](double t) {
     ++result.queries;
@@ -53,6 +70,8 @@ ToiResult toiConservativeAdvancement(const Shape& a, const Pose& pose_a, const M
   // Refuse a step or tolerance that is not positive: the bracket could never get short enough
   requirePositive(h, "time step h");
   requirePositive(tolerance, "time-of-impact tolerance");
+  // Refuse bad shapes, poses and motions here, naming them, rather than at some later time's query
+  validateBodies(a, pose_a, motion_a, b, pose_b, motion_b);
   ToiResult result;
   double t = 0.0;
   while (result.queries < 100000) {

@@ -26,6 +26,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -49,14 +50,19 @@ struct Pose {
 };
 
 /// Throws InvalidInput naming `what` when the pose has a non-finite position or a quaternion that
-/// is not finite and of unit norm (within 1e-6).
-void validatePose(const Pose& pose, const std::string& what);
+/// is not finite and of unit norm (within 1e-6). Every Lab 4 routine calls it on its poses before
+/// using them; it allocates nothing unless it throws.
+void validatePose(const Pose& pose, std::string_view what);
 
 /// Constant velocities of a body over one step, world frame.
 struct Motion {
   Vec3 v = Vec3::Zero();      ///< velocity of the centre, world frame [m/s]
   Vec3 omega = Vec3::Zero();  ///< angular velocity, world frame [rad/s]
 };
+
+/// Throws InvalidInput naming `what` when the velocity or the angular velocity is not finite
+/// (the time-of-impact routines call it on their motions); allocates nothing unless it throws.
+void validateMotion(const Motion& motion, std::string_view what);
 
 /// The pose after time `t` [s] of constant `motion`: \f$x + v t\f$ and
 /// \f$q(t) = \exp(\tfrac t2 \omega)\, q\f$ (a turn by \f$|\omega| t\f$ about \f$\omega\f$, about the centre).
@@ -130,6 +136,24 @@ struct Triangle {
 /// Any of the shapes above.
 using Shape = std::variant<Sphere, Box, Capsule, Plane, ConvexPolyhedron, Triangle>;
 
+/// A shape's fields are public, so one changed after construction (`Sphere s(1); s.radius = -1;`)
+/// escapes its constructor's checks: every Lab 4 routine calls validateShape() on its shapes
+/// before using them. Throws InvalidInput naming `what` and the field when a size is not positive
+/// and finite (sphere, box, capsule), a plane's normal is not a finite unit vector (length within
+/// 1e-9 of 1) or its offset not finite, a triangle's corner is not finite or its area zero, or a
+/// polyhedron has a non-finite vertex, fewer than 4 vertices or faces, a face of fewer than 3 or
+/// more than 32 vertices, a vertex index out of range (in a face or an edge), normals or offsets
+/// not one per face, a normal that is not a finite unit vector or an offset that is not finite.
+/// A polyhedron's convexity is its constructor's check only (too dear to repeat per query): its
+/// check here is linear in its size, the others' constant. Allocates nothing unless it throws.
+void validateShape(const Shape& shape, std::string_view what);
+void validateShape(const Sphere& sphere, std::string_view what);              ///< as for a Shape
+void validateShape(const Box& box, std::string_view what);                    ///< as for a Shape
+void validateShape(const Capsule& capsule, std::string_view what);            ///< as for a Shape
+void validateShape(const Plane& plane, std::string_view what);                ///< as for a Shape
+void validateShape(const ConvexPolyhedron& polyhedron, std::string_view what);  ///< as for a Shape
+void validateShape(const Triangle& triangle, std::string_view what);          ///< as for a Shape
+
 /// A short name of the shape's kind: "sphere", "box", "capsule", "plane", "convex polyhedron",
 /// "triangle".
 const char* shapeName(const Shape& shape);
@@ -197,6 +221,11 @@ struct ContactPolygon {
   }
 };
 
+/// Throws InvalidInput naming `what` when the polygon's count is outside [0, kCapacity] (its
+/// points would be read out of bounds) or one of its first `count` points has a position or
+/// depth that is not finite. Allocates nothing unless it throws.
+void validatePolygon(const ContactPolygon& polygon, std::string_view what);
+
 /// Combines two feature numbers into one id (order matters), for ids of clipped points.
 constexpr std::uint32_t combineFeatures(std::uint32_t a, std::uint32_t b) {
   return (a ^ 0x9e3779b9u) * 16777619u ^ (b + 0x7f4a7c15u);
@@ -206,7 +235,9 @@ constexpr std::uint32_t combineFeatures(std::uint32_t a, std::uint32_t b) {
 // ---------------------------------------------------------------------------------------------
 /// \name Student functions (Lab 4): narrow phase
 /// Each returns an empty Manifold when the shapes are apart (by any margin, however small) and
-/// otherwise a normal from B to A with 1 to 4 points (positions as midpoints, depths >= 0).
+/// otherwise a normal from B to A with 1 to 4 points (positions as midpoints, depths >= 0). Each
+/// first refuses (InvalidInput, naming the argument: "shape a", "pose_b") a shape validateShape()
+/// refuses and a pose validatePose() refuses, so no bad input gives a NaN depth.
 ///@{
 
 /// Two spheres: one point on the line of centres, depth \f$r_A + r_B - |x_A - x_B|\f$,
@@ -229,20 +260,24 @@ Manifold collideCapsuleCapsule(const Capsule& a, const Pose& pose_a, const Capsu
 /// Handout: Lab 4, section 4.
 Manifold collideBoxPlane(const Box& a, const Pose& pose_a, const Plane& b);
 /// The parameters s, t in [0, 1] of the closest points \f$p_1 + s (q_1 - p_1)\f$ and
-/// \f$p_2 + t (q_2 - p_2)\f$ of two segments (either may be a single point). Handout: Lab 4, section 3.
+/// \f$p_2 + t (q_2 - p_2)\f$ of two segments (either may be a single point). InvalidInput naming the
+/// point when p1, q1, p2 or q2 is not finite. Handout: Lab 4, section 3.
 std::array<double, 2> closestSegmentParameters(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2);
 
 /// One step of Sutherland-Hodgman clipping: keeps the part of the convex polygon with
 /// \f$\hat m \cdot p \le o\f$; a point made where an edge crosses the plane gets the id
-/// combineFeatures(id of the edge's first point, `plane_id`) and depth 0. Handout: Lab 4, section 5.
+/// combineFeatures(id of the edge's first point, `plane_id`) and depth 0. InvalidInput naming it
+/// when the polygon's count is outside [0, kCapacity] or a point it counts is not finite, or the
+/// plane's normal or offset is not finite. Handout: Lab 4, section 5.
 ContactPolygon clipPolygon(const ContactPolygon& polygon, const Vec3& plane_normal, double plane_offset,
                            std::uint32_t plane_id);
 /// At most 4 of the candidates, chosen to keep the contact area: the deepest point, the point
 /// farthest from it, the point farthest from the line through those two, and the point outside
 /// that triangle that adds the most area to it (distances and areas measured in the plane normal
 /// to `normal`), in this order. Points are copied unchanged. With at most 4 candidates (4
-/// included) every candidate is kept, in its order, even when they span no area. Handout: Lab 4,
-/// section 5.
+/// included) every candidate is kept, in its order, even when they span no area. InvalidInput
+/// naming it when the normal is not finite, or the candidates' count is outside [0, kCapacity] or
+/// a point it counts has a non-finite position or depth. Handout: Lab 4, section 5.
 Manifold reduceContacts(const Vec3& normal, const ContactPolygon& candidates);
 
 /// A face axis wins over an edge axis unless the edge axis's overlap is smaller by more than this
@@ -265,7 +300,7 @@ Manifold collideConvexConvex(const ConvexPolyhedron& a, const Pose& pose_a, cons
 bool trianglesIntersect(const Triangle& a, const Pose& pose_a, const Triangle& b, const Pose& pose_b);
 ///@}
 
-/// The narrow phase for any pair: validates both poses, then calls the routine for the pair's
+/// The narrow phase for any pair: validates both shapes and poses, then calls the routine for the pair's
 /// kinds (swapping A and B, and flipping the normal back, when the routine takes them the other
 /// way round). Boxes meet polyhedra as polyhedra; capsules and polyhedra meet planes through
 /// their corners and end spheres; the framework handles spheres against polyhedra and capsules
@@ -292,14 +327,16 @@ struct DistanceResult {
 /// point \f$w = s_A(-v) - s_B(v)\f$ until \f$|v|^2 - v \cdot w \le \varepsilon |v|^2\f$
 /// (\f$\varepsilon = 10^{-10}\f$) or \f$|v|\f$ stops shrinking (round-off); the origin inside the
 /// simplex means overlap. The margins are then subtracted. Planes are refused (InvalidInput); use
-/// distance(). Handout: Lab 4, section 8.
+/// distance(). Like the narrow phase, refuses bad shapes and poses naming them ("shape a",
+/// "pose_b"). Handout: Lab 4, section 8.
 DistanceResult gjkDistance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b);
 ///@}
 
 /// Distance for any pair: closed forms against a Plane (the other shape's support point along
 /// \f$-\hat n\f$) and for a Sphere against a Sphere or a Box (its centre clamped to the box in
 /// the box's frame), gjkDistance() otherwise. Closed forms report 1 iteration; touching counts as
-/// overlap, as in GJK. So time of impact on those pairs needs no GJK. Validates both poses.
+/// overlap, as in GJK. So time of impact on those pairs needs no GJK. Validates both shapes and
+/// poses.
 DistanceResult distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b);
 
 // ---------------------------------------------------------------------------------------------
@@ -307,7 +344,9 @@ DistanceResult distance(const Shape& a, const Pose& pose_a, const Shape& b, cons
 /// Both methods move the bodies with advance() over the step [0, h] and report the first time
 /// of contact \f$t_c\f$ to a distance `tolerance`: the returned time \f$t\f$ has the shapes apart
 /// (or touching) with a gap of at most `tolerance` [m], \f$t \le t_c\f$. A Plane must not move.
-/// Both throw InvalidInput, naming the argument, unless `h` and `tolerance` are positive and finite.
+/// Both throw InvalidInput, naming the argument, unless `h` and `tolerance` are positive and finite,
+/// the shapes pass validateShape(), the poses validatePose() and the motions validateMotion()
+/// ("shape a", "pose_a", "motion_a", and the same for b).
 ///@{
 
 /// The answer of a time-of-impact query.

@@ -105,7 +105,9 @@ DistanceResult sphereDistance(const Sphere& a, const Pose& pose_a, const Shape& 
 }  // namespace
 
 Manifold collide(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b) {
+  validateShape(a, "shape A");
   validatePose(pose_a, "pose of shape A");
+  validateShape(b, "shape B");
   validatePose(pose_b, "pose of shape B");
   bool found = false;
   Manifold m = collideOrdered(a, pose_a, b, pose_b, found);
@@ -120,7 +122,9 @@ Manifold collide(const Shape& a, const Pose& pose_a, const Shape& b, const Pose&
 }
 
 DistanceResult distance(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b) {
+  validateShape(a, "shape A");
   validatePose(pose_a, "pose of shape A");
+  validateShape(b, "shape B");
   validatePose(pose_b, "pose of shape B");
   const auto* plane_a = std::get_if<Plane>(&a);
   const auto* plane_b = std::get_if<Plane>(&b);
