@@ -183,7 +183,7 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     if (fixed_x_) gp << "set xrange [" << x_lo_ << ":" << x_hi_ << "]\n";
     if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
     for (const Label& l : labels_) {
-      gp << "set label " << quoted(l.text) << " at " << l.x << ", " << l.y << " left offset 0.5,0 font ',10' front\n";
+      gp << "set label " << quoted(l.text) << " at " << l.x << ", " << l.y << " left offset 1,0 font ',10' front\n";
     }
     if (!x_tics_.empty()) {
       // Slanted names need room below the axis: a fixed bottom margin, in character heights
