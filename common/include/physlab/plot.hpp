@@ -66,7 +66,9 @@ class Chart {
   /// tic per category at 1, 2, ...).
   Chart& xTics(std::vector<std::pair<double, std::string>> tics);
   /// Writes `stem`.png and `stem`.svg (creating the folder) and returns both paths. Points that
-  /// a log axis cannot show (non-positive, infinite) are left out; a NaN breaks the line.
+  /// a log axis cannot show (non-positive, infinite) are left out; a NaN breaks the line. When no
+  /// series has a point to show (every method a stub not written yet), writes nothing, removes
+  /// the files an earlier run left at `stem` and returns no paths.
   std::vector<std::string> save(const std::string& stem) const;
 
  private:
