@@ -505,7 +505,7 @@ void tunnellingChart(const DemoOptions& options, std::vector<std::string>& writt
       const ToiResult r = c.method(scene[1].shape, scene[1].pose, scene[1].motion, scene[0].shape, scene[0].pose,
                                    scene[0].motion, h, 1e-6);
       // Each method's time of impact in its own colour, as in the work-precision chart
-      chart.add({std::string(c.name) + ": time of impact, " + std::to_string(r.queries) + " queries", {r.time},
+      chart.add({std::string(c.name) + " (time of impact, " + std::to_string(r.queries) + " queries)", {r.time},
                  {-1.0 + speed * r.time}, c.style});
     });
   }
