@@ -484,13 +484,13 @@ void tunnellingChart(const DemoOptions& options, std::vector<std::string>& writt
   const double speed = 300.0, h = 1.0 / 60;
   const std::vector<CollisionBody> scene = bulletAndWall(speed);
   Chart chart("A 0.05 m bullet at 300 m/s and a 0.02 m wall, steps of 1/60 s", "time [s]", "bullet centre x [m]");
-  Series steps{"bullet at step ends (discrete check: no overlap)", {}, {}, "points pt 7 ps 1.5"};
+  Series steps{"bullet at step ends (discrete check: no overlap)", {}, {}, "points pt 7 ps 1.5 lc rgb 'black'"};
   for (int n = 0; n <= 3; ++n) {
     steps.x.push_back(n * h);
     steps.y.push_back(-1.0 + speed * n * h);
   }
   Series wall{"wall (|x| < 0.01 m, widened by the bullet's radius)", {0.0, 3 * h, kNaN, 0.0, 3 * h},
-              {-0.06, -0.06, kNaN, 0.06, 0.06}, "lines"};
+              {-0.06, -0.06, kNaN, 0.06, 0.06}, "lines lc rgb 'gray40'"};
   chart.add(steps).add(wall);
   struct Case {
     const char* name;
