@@ -80,12 +80,24 @@ std::string Table::saveMarkdown(const std::string& path) const {
   return path;
 }
 
+namespace {
+
+// What attempt() skipped, as (reason, what), for reportDemo(). A demo is one process that reports
+// once at its end; threading a log through every chart function would say nothing more.
+std::vector<std::pair<std::string, std::string>>& skipped() {
+  static std::vector<std::pair<std::string, std::string>> log;
+  return log;
+}
+
+}  // namespace
+
 bool attempt(const std::string& what, const std::function<void()>& work) {
   try {
     work();
     return true;
   } catch (const std::exception& e) {
     std::cout << "  " << what << ": skipped (" << e.what() << ")\n";
+    skipped().emplace_back(e.what(), what);
     return false;
   }
 }
@@ -94,9 +106,24 @@ void reportDemo(const std::string& lab, const std::vector<std::string>& written,
                 const std::string& summary_path) {
   std::cout << "\n" << lab << " charts:\n";
   for (const auto& path : written) std::cout << "  " << path << "\n";
+  if (written.empty()) std::cout << "  none\n";
   std::cout << "\n" << lab << " summary:\n";
   table.print(std::cout);
   table.saveMarkdown(summary_path);
+  if (skipped().empty()) return;
+  // One paragraph per reason, in the order first met: a stub not written yet names its function
+  std::vector<std::string> reasons;
+  for (const auto& [reason, what] : skipped()) {
+    if (std::find(reasons.begin(), reasons.end(), reason) == reasons.end()) reasons.push_back(reason);
+  }
+  std::cout << "\n" << lab << " skipped " << skipped().size() << " charts or parts of charts, for "
+            << reasons.size() << (reasons.size() == 1 ? " reason" : " reasons") << ":\n";
+  for (const std::string& reason : reasons) {
+    std::cout << "  " << reason << "\n";
+    for (const auto& [why, what] : skipped()) {
+      if (why == reason) std::cout << "    - " << what << "\n";
+    }
+  }
 }
 
 std::string fmt(double value, int digits) {

@@ -1,7 +1,9 @@
 #include "physlab/plot.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -18,6 +20,17 @@ std::string quoted(const std::string& text) {
   std::string out = "'";
   for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
   return out + "'";
+}
+
+// Gnuplot double-quoted strings read backslash escapes (\n for a new line): backslashes and
+// double quotes inside are escaped.
+std::string escapedForDoubleQuotes(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\\' || c == '"') out += '\\';
+    out += c;
+  }
+  return out;
 }
 
 void makeParentFolder(const std::string& path) {
@@ -37,6 +50,18 @@ Chart& Chart::logX() {
 
 Chart& Chart::logY() {
   log_y_ = true;
+  return *this;
+}
+
+Chart& Chart::xRange(double lo, double hi) {
+  fixed_x_ = true;
+  x_lo_ = lo;
+  x_hi_ = hi;
+  return *this;
+}
+
+Chart& Chart::equalAxes() {
+  equal_axes_ = true;
   return *this;
 }
 
@@ -62,6 +87,16 @@ Chart& Chart::mark(Marker marker) {
   return *this;
 }
 
+Chart& Chart::label(Label label) {
+  labels_.push_back(std::move(label));
+  return *this;
+}
+
+Chart& Chart::keyEntry(std::string title, std::string style) {
+  key_entries_.emplace_back(std::move(title), std::move(style));
+  return *this;
+}
+
 Chart& Chart::xTics(std::vector<std::pair<double, std::string>> tics) {
   x_tics_ = std::move(tics);
   return *this;
@@ -78,6 +113,8 @@ std::string methodColour(const std::string& title) {
       // Lab 4: broad phases
       {"brute force", "#000000"}, {"sort and sweep", "#e41a1c"}, {"uniform grid", "#377eb8"},
       {"BVH", "#4daf4a"}, {"k-d tree", "#984ea3"},
+      // Lab 4: time of impact
+      {"bisection", "#a6761d"}, {"conservative advancement", "#1b9e77"},
       // Lab 5: responses
       {"sequential", "#1f5fbf"}, {"simultaneous", "#d62728"}, {"penalty", "#ff9f1c"},
       // Lab 6: LCP solvers
@@ -97,21 +134,37 @@ std::string methodColour(const std::string& title) {
 
 std::vector<std::string> Chart::save(const std::string& stem) const {
   makeParentFolder(stem);
-  // Keep only the points the axes can show, so gnuplot never meets log(0).
+  // Keep only the points the axes can show, so gnuplot never meets log(0); a point with a NaN
+  // coordinate stays, as a break in the line (several segments in one series).
   std::vector<std::vector<std::pair<double, double>>> data;
+  std::vector<bool> shown;  // whether a series kept any finite point
   for (const Series& s : series_) {
     std::vector<std::pair<double, double>> kept;
+    bool any = false;
     for (std::size_t i = 0; i < s.x.size(); ++i) {
+      if (std::isnan(s.x[i]) || std::isnan(s.y[i])) {
+        kept.emplace_back(s.x[i], s.y[i]);
+        continue;
+      }
       const bool ok = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) &&
                       (!log_x_ || s.x[i] > 0.0) && (!log_y_ || s.y[i] > 0.0);
-      if (ok) kept.emplace_back(s.x[i], s.y[i]);
+      if (ok) kept.emplace_back(s.x[i], s.y[i]), any = true;
     }
     data.push_back(std::move(kept));
+    shown.push_back(any);
+  }
+  // Nothing to draw (every method a stub not written yet, say): no chart, and none left from an
+  // earlier run to pass for this one; the demo's list of what it skipped says why
+  if (std::find(shown.begin(), shown.end(), true) == shown.end()) {
+    for (const char* extension : {".png", ".svg"}) std::filesystem::remove(stem + extension);
+    return {};
   }
   // The data's x extent, markers included: where a marker's label has room
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   for (const auto& d : data) {
-    for (const auto& [x, y] : d) x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
+    for (const auto& [x, y] : d) {
+      if (!std::isnan(x) && !std::isnan(y)) x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
+    }
   }
   for (const Marker& m : markers_) x_lo = std::min(x_lo, m.x), x_hi = std::max(x_hi, m.x);
   // The key goes right of the plot, or below it when its longest title would take more than
@@ -133,7 +186,12 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
        << "set grid\n" << key << "set format y '%g'\n";
     if (log_x_) gp << "set logscale x\nset format x '10^{%L}'\n";
     if (log_y_) gp << "set logscale y\nset format y '10^{%L}'\n";
+    if (equal_axes_) gp << "set size ratio -1\n";
+    if (fixed_x_) gp << "set xrange [" << x_lo_ << ":" << x_hi_ << "]\n";
     if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
+    for (const Label& l : labels_) {
+      gp << "set label " << quoted(l.text) << " at " << l.x << ", " << l.y << " left offset 1,0 font ',10' front\n";
+    }
     if (!x_tics_.empty()) {
       // Slanted names need room below the axis: a fixed bottom margin, in character heights
       gp << "set bmargin 16\nset xtics rotate by -45 left font ',9' (";
@@ -156,9 +214,9 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     }
     std::ostringstream plot;
     plot << "plot ";
-    bool first = true;
+    bool first = true;  // no comma before the first series
     for (std::size_t i = 0; i < series_.size(); ++i) {
-      if (data[i].empty()) continue;
+      if (!shown[i]) continue;
       const std::string& style = series_[i].style;
       plot << (first ? "" : ", ") << "'-' with " << style;
       // The method's colour unless the style chooses one; a 2-point line unless it sets a width
@@ -169,13 +227,23 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
       plot << " title " << quoted(series_[i].title);
       first = false;
     }
-    if (first) {
-      gp << "unset logscale\nset label 'no data to show' at graph 0.4, graph 0.5\nplot [0:1] NaN notitle\n";
-    } else {
-      gp << plot.str() << "\n";
-      for (const auto& d : data) {
-        if (!d.empty()) gp.send1d(d);
+    // Key entries after the data, so that each method's entry comes first; NaN draws nothing
+    for (const auto& [title, style] : key_entries_) {
+      plot << ", NaN with " << style << (style.find("lw ") == std::string::npos ? " lw 2" : "") << " title "
+           << quoted(title);
+    }
+    gp << plot.str() << "\n" << std::setprecision(12);
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      if (!shown[i]) continue;
+      // A blank line ends a segment, as in a data file
+      for (const auto& [x, y] : data[i]) {
+        if (std::isnan(x) || std::isnan(y)) {
+          gp << "\n";
+        } else {
+          gp << x << " " << y << "\n";
+        }
       }
+      gp << "e\n";
     }
     gp << "unset output\n";
     paths.push_back(path);
@@ -186,6 +254,13 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
 Animation::Animation(std::string title, const Vec3& lo, const Vec3& hi, bool three_d)
     : title_(std::move(title)), lo_(lo), hi_(hi), three_d_(three_d) {}
 
+Animation& Animation::axes(std::string x, std::string y, std::string z) {
+  x_label_ = std::move(x);
+  y_label_ = std::move(y);
+  z_label_ = std::move(z);
+  return *this;
+}
+
 void Animation::addFrame(std::vector<Layer> layers, const std::string& caption) {
   frames_.push_back(std::move(layers));
   captions_.push_back(caption);
@@ -194,19 +269,24 @@ void Animation::addFrame(std::vector<Layer> layers, const std::string& caption) 
 std::string Animation::save(const std::string& path, int delay_cs) const {
   makeParentFolder(path);
   Gnuplot gp("gnuplot");
-  gp << "set terminal gif animate delay " << delay_cs << " size 640,640 optimize\n"
+  // The title and the caption on lines of their own, in a top margin kept for them: one line
+  // with both ran past the 640-pixel frame
+  gp << "set terminal gif animate delay " << delay_cs << " size 640,640 font 'Sans,10' optimize\n"
      << "set output " << quoted(path) << "\n"
+     << "set tmargin 4\n"
      << "set xrange [" << lo_.x() << ":" << hi_.x() << "]\n"
      << "set yrange [" << lo_.y() << ":" << hi_.y() << "]\n"
+     << "set xlabel " << quoted(x_label_) << "\nset ylabel " << quoted(y_label_) << "\n"
      << "set key top right\n";
   if (three_d_) {
     gp << "set zrange [" << lo_.z() << ":" << hi_.z() << "]\nset view 65, 30\n"
+       << "set zlabel " << quoted(z_label_) << " rotate parallel\n"
        << "set ticslevel 0\nset xyplane at " << lo_.z() << "\n";
   } else {
     gp << "set size ratio -1\n";
   }
   for (std::size_t f = 0; f < frames_.size(); ++f) {
-    gp << "set title " << quoted(title_ + "   " + captions_[f]) << "\n";
+    gp << "set title \"" << escapedForDoubleQuotes(title_) << "\\n" << escapedForDoubleQuotes(captions_[f]) << "\"\n";
     std::ostringstream plot;
     plot << (three_d_ ? "splot " : "plot ");
     for (std::size_t l = 0; l < frames_[f].size(); ++l) {
@@ -217,9 +297,10 @@ std::string Animation::save(const std::string& path, int delay_cs) const {
     gp << plot.str() << "\n";
     for (const Layer& layer : frames_[f]) {
       for (Index i = 0; i < layer.points.cols(); ++i) {
-        // A NaN column breaks a line into separate segments, as gnuplot's blank line does.
+        // A NaN column breaks a line into separate segments: two blank lines, since splot reads
+        // segments split by one as the scans of a surface and joins them with cross lines
         if (!layer.points.col(i).allFinite()) {
-          gp << "\n";
+          gp << "\n\n";
           continue;
         }
         gp << layer.points(0, i) << " " << layer.points(1, i);

@@ -1,9 +1,10 @@
 // Lab 4 demo: what each broad phase costs as the number of boxes grows, how many queries each
-// time-of-impact method spends for a given accuracy, the contact manifolds of box-box face, edge
-// and corner cases, a shape soup falling with its touching pairs coloured, and a fast body
+// time-of-impact method spends for a given accuracy, the normals and depths of each narrow-phase
+// routine, the contact manifolds of box-box face, edge and corner cases, a shape soup falling with its touching pairs coloured, and a fast body
 // tunnelling through a thin wall between two steps.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -63,13 +64,18 @@ Mat3X toMatrix(const std::vector<Vec3>& points) {
   return m;
 }
 
-// Whether two bodies touch: the narrow phase where the pair has a routine, else GJK's overlap.
+// Whether two bodies touch: the narrow phase where the pair has a routine written, else GJK's
+// overlap.
 bool touching(const CollisionBody& a, const CollisionBody& b) {
   const Aabb ba = aabb(a.shape, a.pose), bb = aabb(b.shape, b.pose);
   if ((ba.max.array() < bb.min.array()).any() || (bb.max.array() < ba.min.array()).any()) return false;
   try {
     return !collide(a.shape, a.pose, b.shape, b.pose).empty();
   } catch (const InvalidInput&) {
+    return distance(a.shape, a.pose, b.shape, b.pose).overlap;  // no routine for the pair
+  } catch (const NotImplemented&) {
+    // The pair's routine is not written yet: GJK answers alone, so that the soup needs one of
+    // the two rather than every pair routine
     return distance(a.shape, a.pose, b.shape, b.pose).overlap;
   }
 }
@@ -189,8 +195,10 @@ void toiChart(const DemoOptions& options, std::vector<std::string>& written, Tab
   };
   bool drawn = false;
   for (const Case& c : {Case{"bisection", toiBisection}, Case{"conservative advancement", toiConservativeAdvancement}}) {
-    drawn |= attempt(std::string(c.name), [&] {
-      Series spheres{std::string(c.name) + ", two spheres", {}, {}}, bullet{std::string(c.name) + ", bullet at a wall", {}, {}};
+    drawn |= attempt(std::string("time-of-impact work-precision, ") + c.name, [&] {
+      // One key entry and one colour per method; the scene is the line's style, keyed once below
+      const std::string colour = " lc rgb '" + methodColour(c.name) + "'";
+      Series spheres{c.name, {}, {}, "linespoints pt 7" + colour}, bullet{"", {}, {}, "linespoints pt 4 ps 1.5 dt 2" + colour};
       for (int e = 1; e <= 10; ++e) {
         const double tol = std::pow(10.0, -e);
         const ToiResult s = c.method(Sphere(0.5), pa, ma, Sphere(0.5), pb, mb, h, tol);
@@ -209,7 +217,187 @@ void toiChart(const DemoOptions& options, std::vector<std::string>& written, Tab
     });
   }
   if (!drawn) return;  // both methods are stubs: no chart rather than an empty one
+  chart.keyEntry("two spheres", "linespoints pt 7 lc rgb 'gray30'")
+      .keyEntry("bullet at a wall", "linespoints pt 4 ps 1.5 dt 2 lc rgb 'gray30'");
   for (const std::string& path : chart.save(options.out + "/lab04_toi_work_precision")) written.push_back(path);
+}
+
+// Appends to `out` (a chart's x, y in the world's x, z) the section of a shape by the plane
+// y = 0, posed with a turn about y only: a circle, a stadium or a rectangle, ended by a NaN.
+void appendSection(Series& out, const Shape& shape, const Pose& pose) {
+  const auto put = [&](const Vec3& p) {
+    out.x.push_back(p.x());
+    out.y.push_back(p.z());
+  };
+  if (const auto* s = std::get_if<Sphere>(&shape)) {
+    for (int k = 0; k <= 48; ++k) put(pose.x + s->radius * Vec3(std::cos(M_PI * k / 24), 0.0, std::sin(M_PI * k / 24)));
+  } else if (const auto* c = std::get_if<Capsule>(&shape)) {
+    // The hull of the end circles: each direction's point on the circle about the end it faces
+    const std::array<Vec3, 2> ends = c->segment(pose);
+    const Vec3 axis = ends[1] - ends[0];
+    for (int k = 0; k <= 48; ++k) {
+      const Vec3 u(std::cos(M_PI * k / 24), 0.0, std::sin(M_PI * k / 24));
+      put((u.dot(axis) >= 0.0 ? ends[1] : ends[0]) + c->radius * u);
+    }
+  } else if (const auto* b = std::get_if<Box>(&shape)) {
+    const Vec3& h = b->half_extents;
+    for (const auto& [sx, sz] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}}) {
+      put(pose.toWorld(Vec3(sx * h.x(), 0.0, sz * h.z())));
+    }
+  }
+  out.x.push_back(kNaN);
+  out.y.push_back(kNaN);
+}
+
+// A plane's trace in y = 0 near `at`, 2.4 m long, hatched on the solid's side.
+void appendPlane(Series& out, const Plane& plane, const Vec3& at) {
+  const Vec3 n = plane.normal, t(n.z(), 0.0, -n.x());
+  const Vec3 p0 = at - (n.dot(at) - plane.offset) * n;
+  for (const Vec3& p : std::initializer_list<Vec3>{p0 - 1.2 * t, p0 + 1.2 * t}) {
+    out.x.push_back(p.x());
+    out.y.push_back(p.z());
+  }
+  for (int k = -4; k <= 4; ++k) {
+    const Vec3 p = p0 + 0.27 * k * t, q = p - 0.15 * n - 0.1 * t;
+    out.x.insert(out.x.end(), {kNaN, p.x(), q.x()});
+    out.y.insert(out.y.end(), {kNaN, p.z(), q.z()});
+  }
+  out.x.push_back(kNaN);
+  out.y.push_back(kNaN);
+}
+
+// An arrow from p along the unit n (in the plane y = 0), 0.5 m long with a head, ended by a NaN.
+void appendArrow(Series& out, const Vec3& p, const Vec3& n) {
+  const Vec3 tip = p + 0.5 * n, side(n.z(), 0.0, -n.x());
+  const Vec3 gap = Vec3::Constant(kNaN);
+  for (const Vec3& q : std::initializer_list<Vec3>{p, tip, tip - 0.14 * n + 0.07 * side, gap, tip,
+                                                   tip - 0.14 * n - 0.07 * side, gap}) {
+    out.x.push_back(q.x());
+    out.y.push_back(q.z());
+  }
+}
+
+// The contacts of the narrow-phase routines on a few pairs cut by the plane y = 0: each pair in a
+// cell of its own, its normal (from B to A) an arrow and its depth written at each point, so that
+// a normal of the wrong sign or a depth of the wrong size shows at a glance. Each pair is drawn
+// as soon as its routine is written; an unwritten one leaves its cell empty but for the reason.
+void contactNormalsChart(const DemoOptions& options, std::vector<std::string>& written) {
+  struct Pair {
+    const char* name;  // the pair, written over its cell
+    // Appends A's and B's sections to a and b and returns the manifold, for a cell centred at o
+    std::function<Manifold(const Vec3& o, Series& a, Series& b)> collide;
+  };
+  const auto turned = [](const Vec3& x, double angle) {
+    Pose pose;
+    pose.x = x;
+    pose.q = Quat(Eigen::AngleAxisd(angle, Vec3::UnitY()));
+    return pose;
+  };
+  const std::vector<Pair> pairs = {
+      {"sphere-sphere",
+       [&](const Vec3& o, Series& a, Series& b) {
+         const Sphere sa(0.5), sb(0.6);
+         const Pose pa = turned(o + Vec3(0.45, 0.0, 0.7), 0.0), pb = turned(o, 0.0);
+         appendSection(a, sa, pa), appendSection(b, sb, pb);
+         return collideSphereSphere(sa, pa, sb, pb);
+       }},
+      {"sphere-plane",
+       [&](const Vec3& o, Series& a, Series& b) {
+         const Sphere sa(0.5);
+         const Vec3 n = Vec3(-0.3, 0.0, 1.0).normalized();
+         const Plane plane(n, n.dot(o + Vec3(0.0, 0.0, -0.4)));
+         const Pose pa = turned(o, 0.0);
+         appendSection(a, sa, pa), appendPlane(b, plane, o);
+         return collideSpherePlane(sa, pa, plane);
+       }},
+      {"sphere-box",
+       [&](const Vec3& o, Series& a, Series& b) {
+         const Sphere sa(0.4);
+         const Box bb(Vec3(0.6, 0.5, 0.4));
+         const Pose pb = turned(o + Vec3(-0.2, 0.0, -0.2), 0.3);
+         const Pose pa = turned(pb.toWorld(Vec3(0.75, 0.0, 0.55)), 0.0);
+         appendSection(a, sa, pa), appendSection(b, bb, pb);
+         return collideSphereBox(sa, pa, bb, pb);
+       }},
+      {"capsule-sphere",
+       [&](const Vec3& o, Series& a, Series& b) {
+         const Capsule ca(0.3, 0.5);
+         const Sphere sb(0.5);
+         const Pose pa = turned(o + Vec3(0.0, 0.0, 0.55), 1.2), pb = turned(o + Vec3(0.3, 0.0, -0.05), 0.0);
+         appendSection(a, ca, pa), appendSection(b, sb, pb);
+         return collideCapsuleSphere(ca, pa, sb, pb);
+       }},
+      {"capsule-capsule",
+       [&](const Vec3& o, Series& a, Series& b) {
+         const Capsule ca(0.25, 0.6), cb(0.3, 0.5);
+         const Pose pa = turned(o + Vec3(0.1, 0.0, 0.4), 1.2), pb = turned(o + Vec3(0.0, 0.0, -0.35), 0.2);
+         appendSection(a, ca, pa), appendSection(b, cb, pb);
+         return collideCapsuleCapsule(ca, pa, cb, pb);
+       }},
+      {"box-plane",
+       [&](const Vec3& o, Series& a, Series& b) {
+         const Box ba(Vec3(0.6, 0.4, 0.3));
+         const Plane ground(Vec3::UnitZ(), o.z() - 0.3);
+         const Pose pa = turned(o + Vec3(0.0, 0.0, 0.05), 0.35);
+         appendSection(a, ba, pa), appendPlane(b, ground, o);
+         return collideBoxPlane(ba, pa, ground);
+       }},
+      {"box-box",
+       [&](const Vec3& o, Series& a, Series& b) {
+         const Box ba(Vec3(0.4, 0.4, 0.3)), bb(Vec3(0.7, 0.5, 0.3));
+         const Pose pa = turned(o + Vec3(0.2, 0.0, 0.3), 0.5), pb = turned(o + Vec3(0.0, 0.0, -0.35), 0.0);
+         appendSection(a, ba, pa), appendSection(b, bb, pb);
+         return collideBoxBox(ba, pa, bb, pb);
+       }},
+  };
+  Chart chart("Narrow-phase contacts of pairs cut by the plane y = 0: normal and depth d at each point", "x [m]",
+              "z [m]");
+  chart.equalAxes().xRange(-1.5, 10.5).yRange(-4.5, 1.8);
+  Series a{"A", {}, {}, "lines lw 2 lc rgb '#ff9f1c'"}, b{"B", {}, {}, "lines lw 2 lc rgb '#1f5fbf'"};
+  Series points{"contact point", {}, {}, "points pt 7 ps 1.2 lc rgb '#d62728'"};
+  Series normals{"normal n, from B to A (0.5 m arrow)", {}, {}, "lines lw 2 lc rgb '#2ca02c'"};
+  bool drawn = false;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const Vec3 o(3.0 * static_cast<double>(k % 4), 0.0, k < 4 ? 0.0 : -3.1);
+    chart.label({o.x() - 1.3, o.z() + 1.45, pairs[k].name});
+    drawn |= attempt(std::string("contact normals, ") + pairs[k].name, [&] {
+      // Draw nothing of a pair whose routine throws, but the reason in its cell: its sections go
+      // in only with its manifold
+      Series pair_a = a, pair_b = b;
+      Manifold m;
+      try {
+        m = pairs[k].collide(o, pair_a, pair_b);
+      } catch (const NotImplemented& e) {
+        // "not implemented: f (see ...)": the name of f, which fits a cell
+        const std::string reason = e.what();
+        const std::size_t from = reason.find(": ") + 2;
+        chart.label({o.x() - 1.3, o.z() + 0.2, "not written yet:"})
+            .label({o.x() - 1.3, o.z() - 0.2, reason.substr(from, reason.find(" (see ") - from)});
+        throw;
+      } catch (const std::exception&) {
+        chart.label({o.x() - 1.3, o.z(), "threw: see the output"});
+        throw;
+      }
+      a = std::move(pair_a), b = std::move(pair_b);
+      if (m.empty()) chart.label({o.x() - 1.3, o.z() - 1.2, "no contact found"});
+      for (int i = 0; i < m.count; ++i) {
+        const Vec3& p = m.points[i].position;
+        points.x.push_back(p.x());
+        points.y.push_back(p.z());
+        appendArrow(normals, p, m.normal);
+        // Points that differ in y only fall on one another in the picture: one label for them
+        bool seen = false;
+        for (int j = 0; j < i; ++j) {
+          const Vec3& q = m.points[j].position;
+          seen |= std::abs(q.x() - p.x()) < 1e-6 && std::abs(q.z() - p.z()) < 1e-6;
+        }
+        if (!seen) chart.label({p.x(), p.z() - 0.2, "d = " + fmt(m.points[i].depth, 2) + " m"});
+      }
+    });
+  }
+  if (!drawn) return;
+  chart.add(b).add(a).add(points).add(normals);
+  for (const std::string& path : chart.save(options.out + "/lab04_contact_normals")) written.push_back(path);
 }
 
 // Box-box manifolds: a face on a face (turned), crossed edges, and a corner into a face.
@@ -290,29 +478,39 @@ void soupAnimation(const DemoOptions& options, std::vector<std::string>& written
 }
 
 // The tunnelling case: the bullet's positions at step ends never overlap the wall, while both
-// time-of-impact methods find the contact inside the first step.
+// time-of-impact methods find the contact inside the first step. Each method is drawn as soon as
+// it is written; without either the chart would show nothing of the lab's code and is left out.
 void tunnellingChart(const DemoOptions& options, std::vector<std::string>& written) {
-  attempt("tunnelling", [&] {
-    const double speed = 300.0, h = 1.0 / 60;
-    const std::vector<CollisionBody> scene = bulletAndWall(speed);
-    Chart chart("A 0.05 m bullet at 300 m/s and a 0.02 m wall, steps of 1/60 s", "time [s]", "bullet centre x [m]");
-    Series steps{"bullet at step ends (discrete check: no overlap)", {}, {}, "points pt 7 ps 1.5"};
-    for (int n = 0; n <= 3; ++n) {
-      steps.x.push_back(n * h);
-      steps.y.push_back(-1.0 + speed * n * h);
-    }
-    const ToiResult bis = toiBisection(scene[1].shape, scene[1].pose, scene[1].motion, scene[0].shape, scene[0].pose,
-                                       scene[0].motion, h, 1e-6);
-    const ToiResult ca = toiConservativeAdvancement(scene[1].shape, scene[1].pose, scene[1].motion, scene[0].shape,
-                                                    scene[0].pose, scene[0].motion, h, 1e-6);
-    Series wall{"wall (|x| < 0.01 m, widened by the bullet's radius)", {0.0, 3 * h, kNaN, 0.0, 3 * h},
-                {-0.06, -0.06, kNaN, 0.06, 0.06}, "lines"};
-    Series found{"time of impact (bisection " + std::to_string(bis.queries) + " queries, advancement " +
-                     std::to_string(ca.queries) + ")",
-                 {bis.time, ca.time}, {-1.0 + speed * bis.time, -1.0 + speed * ca.time}, "points pt 6 ps 2.5"};
-    chart.add(steps).add(wall).add(found);
-    for (const std::string& path : chart.save(options.out + "/lab04_tunnelling")) written.push_back(path);
-  });
+  const double speed = 300.0, h = 1.0 / 60;
+  const std::vector<CollisionBody> scene = bulletAndWall(speed);
+  Chart chart("A 0.05 m bullet at 300 m/s and a 0.02 m wall, steps of 1/60 s", "time [s]", "bullet centre x [m]");
+  Series steps{"bullet at step ends (discrete check: no overlap)", {}, {}, "points pt 7 ps 1.5 lc rgb 'black'"};
+  for (int n = 0; n <= 3; ++n) {
+    steps.x.push_back(n * h);
+    steps.y.push_back(-1.0 + speed * n * h);
+  }
+  Series wall{"wall (|x| < 0.01 m, widened by the bullet's radius)", {0.0, 3 * h, kNaN, 0.0, 3 * h},
+              {-0.06, -0.06, kNaN, 0.06, 0.06}, "lines lc rgb 'gray40'"};
+  chart.add(steps).add(wall);
+  struct Case {
+    const char* name;
+    const char* style;
+    ToiResult (*method)(const Shape&, const Pose&, const Motion&, const Shape&, const Pose&, const Motion&, double,
+                        double);
+  };
+  bool drawn = false;
+  for (const Case& c : {Case{"bisection", "points pt 6 ps 2.5", toiBisection},
+                        Case{"conservative advancement", "points pt 2 ps 2", toiConservativeAdvancement}}) {
+    drawn |= attempt(std::string("tunnelling, ") + c.name, [&] {
+      const ToiResult r = c.method(scene[1].shape, scene[1].pose, scene[1].motion, scene[0].shape, scene[0].pose,
+                                   scene[0].motion, h, 1e-6);
+      // Each method's time of impact in its own colour, as in the work-precision chart
+      chart.add({std::string(c.name) + " (time of impact, " + std::to_string(r.queries) + " queries)", {r.time},
+                 {-1.0 + speed * r.time}, c.style});
+    });
+  }
+  if (!drawn) return;
+  for (const std::string& path : chart.save(options.out + "/lab04_tunnelling")) written.push_back(path);
 }
 
 }  // namespace
@@ -321,13 +519,15 @@ int main(int argc, char** argv) {
   try {
     const DemoOptions options = parseDemoOptions(
         argc, argv,
-        "Lab 4 demo: broad-phase cost, time-of-impact work-precision, box-box manifolds, a falling soup, "
+        "Lab 4 demo: broad-phase cost, time-of-impact work-precision, narrow-phase normals and depths, box-box "
+        "manifolds, a falling soup, "
         "tunnelling.");
     std::vector<std::string> written;
     broadPhaseChart(options, written);
     Table table({"method", "tolerance [m]", "spheres: queries", "spheres: |t - t_exact| [s]", "bullet: queries",
                  "bullet: |t - t_exact| [s]"});
     toiChart(options, written, table);
+    contactNormalsChart(options, written);
     manifoldPicture(options, written);
     soupAnimation(options, written);
     tunnellingChart(options, written);

@@ -334,8 +334,10 @@ void frictionRampChart(const DemoOptions& options, std::vector<std::string>& wri
   const double theta = M_PI / 6, duration = 1.0;
   const std::vector<double> mu = {0.0, 0.2, 0.4, 0.5, 0.7};
   const Vec3 downhill = -Vec3(std::cos(theta), 0.0, std::sin(theta));
-  Chart chart("Cubes on a 30 degree ramp, 60 Hz: mu = 0, 0.2, 0.4, 0.5, 0.7 from the top",
+  Chart chart("Cubes on a 30 degree ramp, 60 Hz: speed down the slope, one curve per friction coefficient mu",
               "time [s]", "speed down the slope [m/s]");
+  // Room right of the curves for their labels
+  chart.xRange(0.0, 1.2 * duration);
   bool drawn = false;
   for (const LcpMethod method : {LcpMethod::Lemke, LcpMethod::Pgs}) {
     const bool lemke = method == LcpMethod::Lemke;
@@ -346,7 +348,7 @@ void frictionRampChart(const DemoOptions& options, std::vector<std::string>& wri
       // Untitled series get no colour from their title: name the method's
       const std::string colour = " lc rgb '" + methodColour(lcpMethodName(method)) + "'";
       for (std::size_t i = 0; i < mu.size(); ++i) {
-        // One legend entry per solver; which line is which mu the order tells (see the title)
+        // One key entry per solver; each curve's mu is written at its end
         speeds.push_back({i == 0 ? name : "", {0.0}, {0.0}, (lemke ? "points pt 6 ps 1.5" : "lines lw 2") + colour});
       }
       const long steps = std::lround(duration / kH);
@@ -373,6 +375,7 @@ void frictionRampChart(const DemoOptions& options, std::vector<std::string>& wri
     const double a = std::max(0.0, kG * (std::sin(theta) - mu[i] * std::cos(theta)));
     chart.add({i == 0 ? "g (sin theta - mu cos theta) t" : "", {0.0, duration}, {0.0, a * duration},
                "lines lw 1 dt 2 lc rgb 'black'"});
+    chart.label({duration, a * duration, "mu = " + fmt(mu[i]) + (a == 0.0 ? " (sticks)" : "")});
   }
   for (const auto& p : chart.save(options.out + "/lab06_friction_ramp")) written.push_back(p);
 }

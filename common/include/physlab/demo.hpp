@@ -63,10 +63,13 @@ class Table {
 };
 
 /// Runs `work`. If it throws (a stub not yet written, a method that broke down), prints `what`
-/// and the reason and returns false, so that one failure costs a demo one line, not every chart.
+/// and the reason, notes both for reportDemo() and returns false, so that one failure costs a
+/// demo one chart (or one part of a chart), not every chart. Give each chart, or each part that
+/// needs functions of its own, an attempt of its own.
 bool attempt(const std::string& what, const std::function<void()>& work);
 
-/// Prints the paths a demo wrote and its summary table, and saves the table as Markdown at
+/// Prints the paths a demo wrote and its summary table, then what the attempts skipped, grouped
+/// by the reason (for a stub: the function not written yet), and saves the table as Markdown at
 /// `summary_path`.
 void reportDemo(const std::string& lab, const std::vector<std::string>& written, const Table& table,
                 const std::string& summary_path);
