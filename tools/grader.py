@@ -1449,7 +1449,7 @@ def link_own_files(builder: Builder, kit: Kit, result: StageResult, objects: dic
             exes[kind][unit] = path
         elif unit not in alone:
             alone.add(unit)
-            reason = error.splitlines()[0]
+            reason = re.sub(r"(\w)\((?:[^()]|\([^()]*\))*\)", r"\1()", error.splitlines()[0])  # names, not signatures
             result.notes.append(f"{unit}.cpp does not link with the reference of this lab's other files "
                                 f"({reason}): its tests ran with all of your files of the lab, so they "
                                 f"need those written too")
