@@ -21,6 +21,13 @@ if(EXISTS "${PHYSLAB_ROOT}/solutions")
 endif()
 set_property(GLOBAL PROPERTY PHYSLAB_STAGES "")
 option(PHYSLAB_RELEASED "Link later labs against the released reference of earlier labs (released/, student copies)" ON)
+# Checked at every build (CONFIGURE_DEPENDS): a pull that brings a newly released lab reconfigures,
+# so that later labs build on it from then on.
+file(GLOB PHYSLAB_RELEASED_LABS CONFIGURE_DEPENDS LIST_DIRECTORIES true "${PHYSLAB_ROOT}/released/*")
+if(PHYSLAB_RELEASED_LABS AND PHYSLAB_RELEASED AND NOT PHYSLAB_HAVE_SOLUTIONS)
+  list(TRANSFORM PHYSLAB_RELEASED_LABS REPLACE ".*/" "")
+  message(STATUS "later labs build on the released reference of: ${PHYSLAB_RELEASED_LABS}")
+endif()
 
 option(PHYSLAB_PORTABLE_RUNNER "Test runner without the grader's notary (automatic where executables are not ELF: macOS, Windows)" OFF)
 
