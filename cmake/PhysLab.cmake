@@ -7,9 +7,11 @@
 #   demos/NN_name, bench/NN_name          -> demo_NN_name(_labs), bench_NN_name
 # Isolation: a stage's libraries link the *reference* of every earlier stage (when solutions/
 # is present), so a student's bug in lab 1 costs no points in lab 3. A published student copy has
-# no solutions/ but may carry prebuilt/libphyslab_NN_ref.a, the compiled reference of the stages
-# that later ones build on (`./physlab publish`): then later stages link those, and a student can
-# work on lab 6 before lab 1 is written. PHYSLAB_PREBUILT=OFF links the student's own instead.
+# no solutions/: there a stage's "reference" library is the reference source of a lab the
+# instructor has released (`./physlab publish --release`, released/NN_name/*.cpp), else the
+# student's own labs/NN_name. Later stages link it either way. PHYSLAB_RELEASED=OFF links the
+# student's own earlier labs even where the lab is released. No reference ships compiled: a
+# library of an unreleased lab would answer that lab's tests for the student (an oracle).
 
 set(PHYSLAB_ROOT "${CMAKE_CURRENT_LIST_DIR}/..")
 get_filename_component(PHYSLAB_ROOT "${PHYSLAB_ROOT}" ABSOLUTE)
@@ -18,16 +20,13 @@ if(EXISTS "${PHYSLAB_ROOT}/solutions")
   set(PHYSLAB_HAVE_SOLUTIONS ON)
 endif()
 set_property(GLOBAL PROPERTY PHYSLAB_STAGES "")
-option(PHYSLAB_PREBUILT "Link later labs against prebuilt/ reference libraries when present (student copies)" ON)
-# prebuilt/ is compiled by g++ with libstdc++ for Linux on x86-64 (./physlab publish): it links
-# nowhere else (macOS, arm64, libc++). There the student's own earlier labs are linked instead.
-if(PHYSLAB_PREBUILT AND EXISTS "${PHYSLAB_ROOT}/prebuilt" AND NOT PHYSLAB_HAVE_SOLUTIONS)
-  if(NOT CMAKE_SYSTEM_NAME STREQUAL "Linux" OR NOT CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$"
-     OR CMAKE_CXX_FLAGS MATCHES "-stdlib=libc\\+\\+")
-    message(STATUS "prebuilt/ is for Linux x86-64 with libstdc++, not this build (${CMAKE_SYSTEM_NAME} "
-                   "${CMAKE_SYSTEM_PROCESSOR} ${CMAKE_CXX_FLAGS}): later labs link your own earlier labs")
-    set(PHYSLAB_PREBUILT OFF)
-  endif()
+option(PHYSLAB_RELEASED "Link later labs against the released reference of earlier labs (released/, student copies)" ON)
+# Checked at every build (CONFIGURE_DEPENDS): a pull that brings a newly released lab reconfigures,
+# so that later labs build on it from then on.
+file(GLOB PHYSLAB_RELEASED_LABS CONFIGURE_DEPENDS LIST_DIRECTORIES true "${PHYSLAB_ROOT}/released/*")
+if(PHYSLAB_RELEASED_LABS AND PHYSLAB_RELEASED AND NOT PHYSLAB_HAVE_SOLUTIONS)
+  list(TRANSFORM PHYSLAB_RELEASED_LABS REPLACE ".*/" "")
+  message(STATUS "later labs build on the released reference of: ${PHYSLAB_RELEASED_LABS}")
 endif()
 
 option(PHYSLAB_PORTABLE_RUNNER "Test runner without the grader's notary (automatic where executables are not ELF: macOS, Windows)" OFF)
@@ -200,19 +199,8 @@ function(physlab_add_lab stage)
   set_property(GLOBAL PROPERTY PHYSLAB_DEPENDS_${stage} ${closure})
   set(deps "")
   foreach(dep IN LISTS ARG_DEPENDS)
-    if(TARGET physlab_${dep}_prebuilt)
-      list(APPEND deps physlab_${dep}_prebuilt)
-    else()
-      list(APPEND deps physlab_${dep}_ref)
-    endif()
+    list(APPEND deps physlab_${dep}_ref)
   endforeach()
-  # A student copy's compiled reference of this stage, for the stages that build on it
-  set(prebuilt "${PHYSLAB_ROOT}/prebuilt/libphyslab_${stage}_ref.a")
-  if(NOT PHYSLAB_HAVE_SOLUTIONS AND PHYSLAB_PREBUILT AND EXISTS "${prebuilt}")
-    add_library(physlab_${stage}_prebuilt STATIC IMPORTED GLOBAL)
-    set_target_properties(physlab_${stage}_prebuilt PROPERTIES IMPORTED_LOCATION "${prebuilt}")
-    target_link_libraries(physlab_${stage}_prebuilt INTERFACE physlab_common ${deps})
-  endif()
 
   # Framework code of the stage, compiled once and shared by both implementations.
   file(GLOB framework CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/common/src/${stage}/*.cpp")
@@ -233,9 +221,12 @@ function(physlab_add_lab stage)
     target_link_libraries(physlab_${stage}_labs PUBLIC physlab_common ${deps})
   endif()
 
-  # Reference implementation; in the published student version it is the student's own.
+  # Reference implementation; in the published student version the released reference source of
+  # the lab, or the student's own where the lab is not released.
   if(PHYSLAB_HAVE_SOLUTIONS)
     file(GLOB ref_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/solutions/${stage}/*.cpp")
+  elseif(PHYSLAB_RELEASED AND EXISTS "${PHYSLAB_ROOT}/released/${stage}")
+    file(GLOB ref_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/released/${stage}/*.cpp")
   else()
     file(GLOB ref_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/labs/${stage}/*.cpp")
   endif()

@@ -1573,20 +1573,34 @@ def cmd_grade(args) -> int:
 
 # ---- Gradescope --------------------------------------------------------------------------------
 
+# What grading needs, and all the autograder zip holds (the Grading page, "The Gradescope zip"):
+# the driver and the CMake files that configure the tree (PhysLabDocs.cmake reads Doxyfile.in when
+# Doxygen is installed), the framework, the reference, the stubs (the grader compiles a
+# submission's missing files from them), the visible and hidden tests with their support, the
+# handouts (a failed test's report names a section) and this grader. No mutant catalogue, no
+# hostile submissions, no demos or benchmarks (their folders are globbed: absent, they add no
+# target), no other tool.
+GRADING_FILES = re.compile(r"^(physlab|CMakeLists\.txt|cmake/PhysLab(Dependencies|Docs)?\.cmake|"
+                           r"common/.*|solutions/.*|labs/.*|tests/(?!hidden/(mutants|adversarial)/).*|"
+                           r"docs/lab\d\d_[a-z0-9_]+\.md|docs/Doxyfile\.in|tools/grader\.py)$")
+
+
 def cmd_gradescope(args) -> int:
-    """Writes the Gradescope autograder zip: the tracked files, with setup.sh and run_autograder at
-    its top level."""
-    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True,
-                           check=True).stdout.decode().split("\0")
+    """Writes the Gradescope autograder zip: the tracked files grading needs (GRADING_FILES) under
+    physlab/, with setup.sh and run_autograder at its top level."""
+    tracked = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True,
+                             check=True).stdout.decode().split("\0")
+    files = [f for f in tracked if GRADING_FILES.match(f)]
     out = Path(args.out).resolve()
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
-        for name in (f for f in files if f):
+        for name in files:
             z.write(ROOT / name, f"physlab/{name}")
         for script in ("setup.sh", "run_autograder"):
             info = zipfile.ZipInfo(script)
             info.external_attr = 0o755 << 16
             z.writestr(info, (ROOT / "tools" / "gradescope" / script).read_text())
-    print(f"wrote {out} ({len([f for f in files if f])} files)")
+    print(f"wrote {out} ({len(files)} of the {len([f for f in tracked if f])} tracked files, "
+          f"{out.stat().st_size // 1024} KiB)")
     return 0
 
 

@@ -3,7 +3,8 @@
 # to /autograder/source/physlab. This installs the Debian packages, builds the instructor's side
 # of every graded link once, creates the sandbox users and compiles the stubs into the grader's
 # cache by grading them, so that grading a submission only compiles its changed lab files.
+# AUTOGRADER_ROOT (default /autograder) stands for Gradescope's folder when trying the zip elsewhere.
 set -euo pipefail
-cd /autograder/source/physlab
+cd "${AUTOGRADER_ROOT:-/autograder}/source/physlab"
 ./physlab setup
 ./physlab grade labs --out /tmp/physlab-warm-up >/dev/null
