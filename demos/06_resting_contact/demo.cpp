@@ -535,7 +535,7 @@ int main(int argc, char** argv) {
     pyramidChart(options, rows, written, table);
     largestPyramidChart(options, written, table);
     frictionRampChart(options, written, table);
-    suiteChart(options, written, table);
+    attempt("contact suite", [&] { suiteChart(options, written, table); });
     pyramidAnimation(options, rows, written);
     collapseAnimation(options, written);
     largePyramidAnimations(options, written);
