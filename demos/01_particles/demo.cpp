@@ -152,6 +152,7 @@ void nbodyAnimation(const DemoOptions& options, std::vector<std::string>& writte
   VecX X = sys->makeState(x, v);
   Animation animation("Figure-eight three-body orbit (Verlet, h = 0.002)", Vec3(-1.3, -1.3, 0),
                       Vec3(1.3, 1.3, 0), false);
+  animation.axes("x (G = m = 1 units)", "y (G = m = 1 units)");  // Chenciner-Montgomery's units
   Integrator verlet(Method::Verlet);
   const double h = 0.002, period = 6.3259;
   const int frames = options.quick ? 30 : 90;
