@@ -115,8 +115,8 @@ void recordParticles(Replay& replay, double t, const Mat3X& positions, double ki
 Replay startReplay(const World& world, std::string title);
 /// Appends the World's state now as a frame: every body's pose, the last step's contacts
 /// (World::contacts(): point, normal, depth, normal impulse j), the energies and the solver
-/// iterations of World::diagnostics(). Call it after each step to record; a World that is not
-/// recorded pays nothing. InvalidInput when the replay's body count is not the World's.
+/// iterations of World::diagnostics(). Call it after a step (a World not yet stepped has no
+/// diagnostics: zeros); a World that is not recorded pays nothing. InvalidInput when the replay's body count is not the World's.
 void recordFrame(const World& world, Replay& replay);
 ///@}
 
