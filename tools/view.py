@@ -42,11 +42,17 @@ class ReplayError(Exception):
 
 
 def read_replay(path):
-    """The replay at `path` as a dict: bodies (kind, fixed), particle count, frames (time, poses, particles)."""
+    """parse_replay() of the file at `path`."""
     try:
         data = Path(path).read_bytes()
     except OSError as e:
         raise ReplayError(f"replay {path}: cannot be read ({e.strerror})") from None
+    return parse_replay(data, path)
+
+
+def parse_replay(data, path):
+    """The replay in `data` (named `path` in messages) as a dict: title, bodies (kind, fixed),
+    particle count, frames (time, poses, particles) and its bytes."""
     at = 0
 
     def need(n, field):
@@ -177,7 +183,11 @@ def main():
         data = {"error": str(e)}
         print(f"view: {e}", file=sys.stderr)
         status = 2
-    out.write_text(page(title, data, labels), encoding="utf-8")
+    try:
+        out.write_text(page(title, data, labels), encoding="utf-8")
+    except ReplayError as e:
+        print(f"view: {e}", file=sys.stderr)
+        return 2
     print(out)
     return status
 
