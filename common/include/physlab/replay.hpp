@@ -111,6 +111,7 @@ void recordParticles(Replay& replay, double t, const Mat3X& positions, double ki
 
 /// \name Recording a World (defined with Lab 5's framework)
 ///@{
+
 /// A replay of `world` with its shapes and settings (World::describe()) and no frames yet.
 Replay startReplay(const World& world, std::string title);
 /// Appends the World's state now as a frame: every body's pose, the last step's contacts
