@@ -6,6 +6,7 @@
 #include <string>
 
 #include "impulse_support.hpp"
+#include "physlab/error.hpp"
 #include "physlab/replay.hpp"
 
 using namespace physlab;
