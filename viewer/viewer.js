@@ -224,7 +224,7 @@
         cp.set(c.p, 3 * k);
         const red = Math.min(1, c.depth / 0.005);  // red at 5 mm of overlap and deeper, green when touching
         cc.set([red, 1 - red, 0], 3 * k);
-        const length = 0.08 + 10 * c.depth;  // the arrow grows 1 cm per mm of depth
+        const length = 0.05 + Math.min(0.1, 5 * c.depth);  // 5 cm, and 5 mm longer per mm of depth up to 15 cm
         normal.set(c.n[0], c.n[1], c.n[2]);
         sp.set(c.p, 6 * k);
         sp.set([c.p[0] + length * c.n[0], c.p[1] + length * c.n[1], c.p[2] + length * c.n[2]], 6 * k + 3);

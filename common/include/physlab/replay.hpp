@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "physlab/collision.hpp"
 #include "physlab/math.hpp"
 
 namespace physlab {
@@ -108,6 +109,14 @@ void recordPoses(Replay& replay, double t, const std::vector<Vec3>& x, const std
 /// InvalidInput when the count is not replay.particle_count.
 void recordParticles(Replay& replay, double t, const Mat3X& positions, double kinetic_energy,
                      double potential_energy);
+
+/// \name Recording shapes (defined with Lab 4's framework)
+///@{
+
+/// The recorded form of `shape`: its sizes, or (a ConvexPolyhedron, a Triangle) a mesh of
+/// triangles, each face a fan from its first vertex; a Triangle gets both sides.
+ReplayBody replayBody(const Shape& shape, bool fixed);
+///@}
 
 /// \name Recording a World (defined with Lab 5's framework)
 ///@{
