@@ -156,14 +156,15 @@
       objects.push([i, object]);
     }
 
-    // Particles and springs (Labs 1-2)
-    let points = null, springs = null;
+    // Particles (Labs 1-2) as small spheres, one InstancedMesh, and springs as lines
+    const extent = bounds(replay);
+    const size = Math.max(0.5, extent.getSize(new THREE.Vector3()).length() / 2);
+    let particles = null, springs = null;
     if (replay.particles > 0) {
-      const geometry = new THREE.BufferGeometry();
-      geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(3 * replay.particles), 3));
-      points = new THREE.Points(geometry, new THREE.PointsMaterial({ color: COLOURS.particle, size: 6, sizeAttenuation: false }));
-      points.frustumCulled = false;
-      scene.add(points);
+      particles = new THREE.InstancedMesh(new THREE.SphereBufferGeometry(0.012 * size, 12, 8),
+                                          new THREE.MeshStandardMaterial({ color: COLOURS.particle, roughness: 0.5 }), replay.particles);
+      particles.frustumCulled = false;
+      scene.add(particles);
       if (replay.springs.length > 0) {
         const lines = new THREE.BufferGeometry();
         lines.setAttribute("position", new THREE.BufferAttribute(new Float32Array(3 * replay.springs.length), 3));
@@ -171,6 +172,13 @@
         springs.frustumCulled = false;
         scene.add(springs);
       }
+    }
+    // A scene without a ground plane gets a grid under it, so that up and scale read at a glance
+    if (!replay.bodies.some((body) => body.kind === KIND.Plane)) {
+      const grid = new THREE.GridHelper(4 * size, 20, 0xbbbbbb, 0xdddddd);
+      grid.rotation.x = Math.PI / 2;
+      grid.position.set(extent.getCenter(new THREE.Vector3()).x, extent.getCenter(new THREE.Vector3()).y, extent.min.z - 0.1 * size);
+      scene.add(grid);
     }
 
     // Contacts: points coloured by depth, normals as arrows (shaft lines and instanced cone heads)
@@ -208,9 +216,13 @@
         object.position.copy(position);
         object.quaternion.copy(quaternion);
       }
-      if (points) {
-        points.geometry.attributes.position.array.set(frame.particles);
-        points.geometry.attributes.position.needsUpdate = true;
+      if (particles) {
+        scale.set(1, 1, 1);
+        quaternion.set(0, 0, 0, 1);
+        for (let k = 0; k < replay.particles; ++k) {
+          particles.setMatrixAt(k, matrix.compose(position.fromArray(frame.particles, 3 * k), quaternion, scale));
+        }
+        particles.instanceMatrix.needsUpdate = true;
         if (springs) {
           const a = springs.geometry.attributes.position.array;
           replay.springs.forEach((p, k) => a.set(frame.particles.subarray(3 * p, 3 * p + 3), 3 * k));
@@ -243,18 +255,22 @@
     return { scene: scene, update: update };
   }
 
-  // The first frame's moving bodies and particles: where the camera looks, and from how far.
+  // Where the bodies (planes left out) and particles go over the run, from 20 frames spread over
+  // it: where the camera looks, and from how far.
   function bounds(replay) {
-    const box = new THREE.Box3();
-    const frame = replay.frames[0];
-    replay.bodies.forEach((body, i) => {
-      if (body.kind === KIND.Plane) return;
-      const r = body.kind === KIND.Box ? Math.hypot(body.size[0], body.size[1], body.size[2]) : Math.max(body.size[0], 0.1);
-      const c = new THREE.Vector3(frame.poses[7 * i], frame.poses[7 * i + 1], frame.poses[7 * i + 2]);
-      box.expandByPoint(c.clone().addScalar(r));
-      box.expandByPoint(c.clone().addScalar(-r));
-    });
-    for (let k = 0; k < replay.particles; ++k) box.expandByPoint(new THREE.Vector3().fromArray(frame.particles, 3 * k));
+    const box = new THREE.Box3(), point = new THREE.Vector3();
+    const stride = Math.max(1, Math.floor(replay.frames.length / 20));
+    for (let f = 0; f < replay.frames.length; f += stride) {
+      const frame = replay.frames[f];
+      replay.bodies.forEach((body, i) => {
+        if (body.kind === KIND.Plane) return;
+        const r = body.kind === KIND.Box ? Math.hypot(body.size[0], body.size[1], body.size[2]) : Math.max(body.size[0], 0.1);
+        point.fromArray(frame.poses, 7 * i);
+        box.expandByPoint(point.clone().addScalar(r));
+        box.expandByPoint(point.clone().addScalar(-r));
+      });
+      for (let k = 0; k < replay.particles; ++k) box.expandByPoint(point.fromArray(frame.particles, 3 * k));
+    }
     if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, 0), new THREE.Vector3(1, 1, 1));
     return box;
   }
