@@ -112,7 +112,7 @@ std::size_t replayFrameBytes(std::size_t bodies, std::size_t particles, std::siz
 }
 
 std::string encodeReplay(const Replay& replay) {
-  // Check every count against the header's before writing a byte
+  // Check every array against the counts the header will state, before writing a byte
   const std::size_t B = replay.bodies.size(), P = replay.particle_count;
   std::size_t total = replayHeaderBytes(replay) + 4 * replay.springs.size();
   for (std::size_t i = 0; i < B; ++i) {
