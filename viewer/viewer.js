@@ -80,7 +80,7 @@
 
   // ---------------------------------------------------------------- scene building
   const KIND = { Sphere: 0, Box: 1, Capsule: 2, Plane: 3, Convex: 4 };
-  const COLOURS = { moving: 0x3b7dd8, fixed: 0x9a9a9a, particle: 0xd8743b, contact: 0xff2222, normal: 0xffcc00 };
+  const COLOURS = { moving: 0x3b7dd8, fixed: 0x9a9a9a, particle: 0xd8743b, normal: 0xffcc00 };
 
   function material(fixed, opacity) {
     return new THREE.MeshStandardMaterial({
@@ -319,6 +319,7 @@
     if (data.diff) {
       $("diff").textContent = data.diff.text;
       $("diff").hidden = false;
+      $("diff").classList.toggle("agree", data.diff.frame === null);
       if (data.diff.frame !== null) {
         const mark = $("diff-mark");
         mark.style.left = `${(100 * data.diff.frame) / Math.max(1, frames - 1)}%`;
