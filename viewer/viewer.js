@@ -12,6 +12,7 @@
     const box = $("error");
     box.textContent = message;
     box.hidden = false;
+    for (const id of ["view", "controls", "panel"]) $(id).hidden = true;  // nothing to play
   }
 
   // ---------------------------------------------------------------- replay decoding
