@@ -5,6 +5,7 @@
 #   common/src/NN_name/*.cpp    framework code of the stage, compiled into both
 #   tests/NN_name, tests/hidden/NN_name   graded tests -> test_NN_name (ref), test_NN_name_labs
 #   demos/NN_name, bench/NN_name          -> demo_NN_name(_labs), bench_NN_name
+#   views/NN_name                         -> view_NN_name(_labs): scenes for ./physlab view
 # Isolation: a stage's libraries link the *reference* of every earlier stage (when solutions/
 # is present), so a student's bug in lab 1 costs no points in lab 3. A published student copy has
 # no solutions/: there a stage's "reference" library is the reference source of a lab the
@@ -308,6 +309,14 @@ function(physlab_add_lab stage)
     target_link_libraries(physlab_${stage}_demo PRIVATE physlab_common)
     physlab_cxx(physlab_${stage}_demo)
     physlab_variant_executables(demo_${stage} ${stage} physlab_${stage}_demo)
+  endif()
+  # Scene recorder of the 3-D viewer (./physlab view NN), for both implementations.
+  file(GLOB view_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/views/${stage}/*.cpp")
+  if(view_sources)
+    add_library(physlab_${stage}_view OBJECT ${view_sources})
+    target_link_libraries(physlab_${stage}_view PRIVATE physlab_common)
+    physlab_cxx(physlab_${stage}_view)
+    physlab_variant_executables(view_${stage} ${stage} physlab_${stage}_view)
   endif()
   file(GLOB bench_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/bench/${stage}/*.cpp")
   if(bench_sources)

@@ -1,0 +1,50 @@
+// Lab 1 scenes for the 3-D viewer (./physlab view 01): particles under N-body gravity.
+#include <cmath>
+#include <memory>
+
+#include "physlab/integrators.hpp"
+#include "physlab/particles.hpp"
+#include "physlab/replay.hpp"
+#include "physlab/view.hpp"
+
+using namespace physlab;
+
+namespace {
+
+// A sun (mass 1) and three planets (10^-3 each) on circular orbits of radius 1, 1.6 and 2.4 in the
+// plane z = 0.5, G = 1 (scaled units: the inner year is 2 pi), softening 0.01. Velocity Verlet,
+// h = 0.002, 20 time units, 50 frames a unit.
+Replay orbits() {
+  const double G = 1.0, sun = 1.0, planet = 1e-3;
+  VecX masses(4);
+  masses << sun, planet, planet, planet;
+  ParticleSystem sys(masses);
+  sys.addForce(std::make_shared<NBodyGravity>(G, 0.01));
+  Mat3X x = Mat3X::Zero(3, 4), v = Mat3X::Zero(3, 4);
+  x.row(2).setConstant(0.5);
+  const double radii[3] = {1.0, 1.6, 2.4};
+  for (int k = 0; k < 3; ++k) {
+    const double angle = 2.1 * k;  // spread round the sun
+    x.col(k + 1).head<2>() << radii[k] * std::cos(angle), radii[k] * std::sin(angle);
+    const double speed = std::sqrt(G * sun / radii[k]);
+    v.col(k + 1).head<2>() << -speed * std::sin(angle), speed * std::cos(angle);
+  }
+  VecX X = sys.makeState(x, v);
+  Replay replay;
+  replay.title = "Lab 1: three planets round a sun, N-body gravity";
+  replay.settings = "velocity Verlet, h = 0.002, G = 1, softening 0.01, masses 1 and 3 x 0.001";
+  replay.particle_count = 4;
+  Integrator verlet(Method::Verlet);
+  const double h = 0.002;
+  for (int n = 0; n <= 10000; ++n) {
+    if (n > 0) verlet.step(sys, X, h);
+    if (n % 10 == 0) recordParticles(replay, n * h, positions(X), kineticEnergy(sys, X), potentialEnergy(sys, X));
+  }
+  return replay;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return runView(argc, argv, {{"orbits", "three planets round a sun (N-body gravity, velocity Verlet)", orbits}});
+}
