@@ -302,22 +302,17 @@ function(physlab_add_lab stage)
 }
 ")
 
-  # Demo (charts) for both implementations, benchmark for the reference.
-  file(GLOB demo_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/demos/${stage}/*.cpp")
-  if(demo_sources)
-    add_library(physlab_${stage}_demo OBJECT ${demo_sources})
-    target_link_libraries(physlab_${stage}_demo PRIVATE physlab_common)
-    physlab_cxx(physlab_${stage}_demo)
-    physlab_variant_executables(demo_${stage} ${stage} physlab_${stage}_demo)
-  endif()
-  # Scene recorder of the 3-D viewer (./physlab view NN), for both implementations.
-  file(GLOB view_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/views/${stage}/*.cpp")
-  if(view_sources)
-    add_library(physlab_${stage}_view OBJECT ${view_sources})
-    target_link_libraries(physlab_${stage}_view PRIVATE physlab_common)
-    physlab_cxx(physlab_${stage}_view)
-    physlab_variant_executables(view_${stage} ${stage} physlab_${stage}_view)
-  endif()
+  # Demo (charts) and the 3-D viewer's scene recorder (./physlab view NN) for both
+  # implementations, from demos/ and views/; benchmark for the reference.
+  foreach(program IN ITEMS demo view)
+    file(GLOB program_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/${program}s/${stage}/*.cpp")
+    if(program_sources)
+      add_library(physlab_${stage}_${program} OBJECT ${program_sources})
+      target_link_libraries(physlab_${stage}_${program} PRIVATE physlab_common)
+      physlab_cxx(physlab_${stage}_${program})
+      physlab_variant_executables(${program}_${stage} ${stage} physlab_${stage}_${program})
+    endif()
+  endforeach()
   file(GLOB bench_sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/bench/${stage}/*.cpp")
   if(bench_sources)
     add_executable(bench_${stage} ${bench_sources})
