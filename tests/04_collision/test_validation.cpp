@@ -293,8 +293,7 @@ void checkShapes(const Call& call, const A& good_a, const Spoiled<A>& bad_a, con
 
 }  // namespace
 
-TEST_CASE("bad input: sphere routines refuse spoiled spheres, boxes and planes and bad poses, naming them",
-          "[lab04][pts=1][sec=2]") {
+TEST_CASE("bad input: sphere routines refuse spoiled spheres, boxes and planes and bad poses, naming them", "[lab04][pts=1][sec=2]") {
   const Sphere big(1.0), small(0.5);
   const Box box(Vec3(1.0, 1.0, 1.0));
   const Plane ground(Vec3::UnitZ(), 0.0);
@@ -317,8 +316,7 @@ TEST_CASE("bad input: sphere routines refuse spoiled spheres, boxes and planes a
               badSpheres(small), box, badBoxes(box));
 }
 
-TEST_CASE("bad input: capsule routines and closest points of segments refuse bad shapes, poses and ends, naming them",
-          "[lab04][pts=1][sec=3]") {
+TEST_CASE("bad input: capsule routines and closest points of segments refuse bad shapes, poses and ends, naming them", "[lab04][pts=1][sec=3]") {
   // Valid: crossed segments meet at their middles
   const Vec3 ends[4] = {Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 1), Vec3(0, 1, 1)};
   const std::array<double, 2> st = closestSegmentParameters(ends[0], ends[1], ends[2], ends[3]);
@@ -349,8 +347,7 @@ TEST_CASE("bad input: capsule routines and closest points of segments refuse bad
               badCapsules(upright), upright, badCapsules(upright));
 }
 
-TEST_CASE("bad input: a box on a plane refuses a spoiled box or plane and a bad pose, naming them",
-          "[lab04][pts=1][sec=4]") {
+TEST_CASE("bad input: a box on a plane refuses a spoiled box or plane and a bad pose, naming them", "[lab04][pts=1][sec=4]") {
   const Box box(Vec3(1.0, 1.0, 1.0));
   const Plane ground(Vec3::UnitZ(), 0.0);
   const Manifold m = collideBoxPlane(box, at(Vec3(0, 0, 0.9)), ground);
@@ -374,8 +371,7 @@ TEST_CASE("bad input: box-box refuses spoiled boxes and bad poses, naming them",
               badBoxes(box));
 }
 
-TEST_CASE("bad input: clipping and reduction refuse counts past the points, NaN points and planes, naming them",
-          "[lab04][pts=1][sec=5]") {
+TEST_CASE("bad input: clipping and reduction refuse counts past the points, NaN points and planes, naming them", "[lab04][pts=1][sec=5]") {
   ContactPolygon square;
   for (std::uint32_t k = 0; k < 4; ++k) square.add(Vec3(k == 1 || k == 2 ? 1 : -1, k >= 2 ? 1 : -1, 0), 0.1, k);
   // Valid: cut by x <= 0, the left half and the two crossings
@@ -411,8 +407,7 @@ TEST_CASE("bad input: clipping and reduction refuse counts past the points, NaN 
   CHECK_THROWS_WITH(reduceContacts(Vec3(0, kInf, 1), hexagon), Contains("reduceContacts normal"));
 }
 
-TEST_CASE("bad input: convex polyhedra changed after construction and bad poses are refused, naming them",
-          "[lab04][pts=1][sec=6]") {
+TEST_CASE("bad input: convex polyhedra changed after construction and bad poses are refused, naming them", "[lab04][pts=1][sec=6]") {
   const ConvexPolyhedron cube = ConvexPolyhedron::box(Vec3(1.0, 1.0, 1.0));
   const Pose above = at(Vec3(0, 0, 1.9)), below = at(Vec3::Zero());
   const Manifold m = collideConvexConvex(cube, above, cube, below);
@@ -482,8 +477,7 @@ TEST_CASE("bad input: time of impact refuses bad shapes, poses and motions, nami
   }
 }
 
-TEST_CASE("bad input: shapes apart are refused all the same when spoiled, before any early return",
-          "[lab04][pts=1][sec=2][sec=3][sec=4][sec=5][sec=6][sec=7]") {
+TEST_CASE("bad input: shapes apart are refused all the same when spoiled, before any early return", "[lab04][pts=1][sec=2][sec=3][sec=4][sec=5][sec=6][sec=7]") {
   // Far apart: a routine that returns "no contact" before its checks lets a NaN through
   const Pose origin = at(Vec3::Zero()), far = at(Vec3(100, 100, 100));
   const Plane ground(Vec3::UnitZ(), -200.0);
