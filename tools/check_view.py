@@ -13,8 +13,11 @@ resolves nowhere, every request goes to a proxy that is not there), and must
   - step to the last frame: opened at #frame=last, its DOM shows frame N of N, N being the
     frame count of the replay inlined in the page (of the shorter one when two are shown), and no
     error box.
-Without Chromium the check is skipped with a message (exit 0). Exit status 1 when a page fails,
-each finding on its own line as page: problem.
+With --measure it also prints how long a page takes to show each frame in turn (#measure: the
+poses, the contacts drawn, the panel and the energy plot, waiting for the GPU after each), median
+and slowest: a figure, not a check (Chromium here renders in software, SwiftShader, on a shared
+CPU; a laptop's GPU draws faster). Without Chromium the check is skipped with a message (exit 0).
+Exit status 1 when a page fails, each finding on its own line as page: problem.
 """
 import argparse
 import base64
@@ -135,6 +138,18 @@ def element_text(dom, element_id):
     return html.unescape(match.group(1)) if match else None
 
 
+def measure(browser, page):
+    """The page's own timing of showing every frame (#measure), as it writes it into #measured."""
+    with tempfile.TemporaryDirectory(prefix="physlab-view-") as tmp:
+        # No virtual time: the page's clock must be the wall clock
+        cmd = [browser, "--headless", "--no-sandbox", "--no-first-run", "--disable-gpu", "--enable-unsafe-swiftshader",
+               "--host-resolver-rules=MAP * ~NOTFOUND", "--proxy-server=http://127.0.0.1:9",
+               f"--user-data-dir={Path(tmp) / 'profile'}", f"--window-size={WINDOW[0]},{WINDOW[1]}", "--dump-dom",
+               page.resolve().as_uri() + "#frame=1&contacts&measure"]
+        dom = subprocess.run(cmd, capture_output=True, text=True, timeout=300).stdout
+    return element_text(dom, "measured") or "no timing: the page did not finish showing its frames"
+
+
 def check(browser, page):
     problems = []
     text = page.read_text(encoding="utf-8")
@@ -163,6 +178,7 @@ def check(browser, page):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("pages", nargs="+", type=Path)
+    parser.add_argument("--measure", action="store_true", help="also print the time each page takes per frame")
     args = parser.parse_args()
     browser = find_browser()
     if browser is None:
@@ -178,6 +194,8 @@ def main():
             print(f"{page}: {problem}")
         if not problems:
             print(f"{page}: ok (offline, no request, canvas drawn, frame {frames} of {frames} at #frame=last)")
+        if args.measure and not problems:
+            print(f"{page}: showing every frame in turn, contacts drawn: {measure(browser, page)}")
         failed |= bool(problems)
     return 1 if failed else 0
 

@@ -32,7 +32,7 @@ THREE_DIR = Path("/usr/share/javascript/three")
 THREE = THREE_DIR / "build" / "three.min.js"
 ORBIT = THREE_DIR / "examples" / "js" / "controls" / "OrbitControls.js"
 MAGIC = b"PHYSLAB-REPLAY"
-VERSION = 1
+VERSION = 2
 KINDS = ("sphere", "box", "capsule", "plane", "convex")
 ORIENTATION_TOLERANCE = 1e-3  # rad: 1 mrad, the angle a 1 m body turns to move its end by 1 mm
 
@@ -71,8 +71,8 @@ def parse_replay(data, path):
         raise ReplayError(f'replay {path}: not a PhysLab replay: bytes 0-13 are not "PHYSLAB-REPLAY"')
     at = len(MAGIC)
     (version,) = take("<H", "the version")
-    if version > VERSION:
-        raise ReplayError(f"replay {path}: version {version} at byte 14 is newer than this reader's ({VERSION})")
+    if not 1 <= version <= VERSION:
+        raise ReplayError(f"replay {path}: version {version} at byte 14 is not one this reader knows (1-{VERSION})")
     bodies_n, particles_n, springs_n, frames_n = take("<4I", "the header's counts")
     texts = []
     for field in ("the title", "the settings"):
@@ -87,6 +87,10 @@ def parse_replay(data, path):
     frames = []
     for f in range(frames_n):
         time, _, _, _, contacts = take("<3f2I", f"frame {f}'s time, energies and counts")
+        if version > 1:
+            (flags,) = take("<I", f"frame {f}'s flags")
+            if not flags & 1 and contacts:
+                raise ReplayError(f"replay {path}: frame {f} holds {contacts} contacts but says they were not recorded")
         poses = take(f"<{7 * bodies_n}f", f"frame {f}'s poses")
         particles = take(f"<{3 * particles_n}f", f"frame {f}'s particles")
         need(40 * contacts, f"frame {f}'s {contacts} contacts")

@@ -17,7 +17,7 @@
 
   // ---------------------------------------------------------------- replay decoding
   const MAGIC = "PHYSLAB-REPLAY";
-  const VERSION = 1;
+  const VERSION = 2;
 
   function decodeReplay(base64, what) {
     const raw = atob(base64);
@@ -42,7 +42,7 @@
     at = MAGIC.length;
     need(2, "the version");
     const version = view.getUint16(at, true); at += 2;
-    if (version > VERSION) throw new Error(`replay ${what}: version ${version} at byte 14 is newer than this page's (${VERSION})`);
+    if (version < 1 || version > VERSION) throw new Error(`replay ${what}: version ${version} at byte 14 is not one this page knows (1-${VERSION})`);
     need(16, "the header's counts");
     const B = u32(), P = u32(), S = u32(), F = u32();
     const replay = { title: text("the title"), settings: text("the settings"), bodies: [], particles: P, springs: [], frames: [] };
@@ -58,9 +58,13 @@
     need(8 * S, `the ${S} springs`);
     replay.springs = Array.from({ length: 2 * S }, u32);
     for (let f = 0; f < F; ++f) {
-      need(20, `frame ${f}'s time, energies and counts`);
+      need(version > 1 ? 24 : 20, `frame ${f}'s time, energies and counts`);
       const frame = { time: f32(), kinetic: f32(), potential: f32(), iterations: u32() };
       const C = u32();
+      // A frame whose contacts were left out (a large scene) shows the last recorded ones
+      const recorded = version === 1 || (u32() & 1) !== 0;
+      if (!recorded && C !== 0) throw new Error(`replay ${what}: frame ${f} holds ${C} contacts but says they were not recorded`);
+      frame.contactsFrom = recorded ? f : (f > 0 ? replay.frames[f - 1].contactsFrom : null);
       need(28 * B, `frame ${f}'s poses`);
       frame.poses = new Float32Array(bytes.buffer.slice(at, at + 28 * B)); at += 28 * B;
       need(12 * P, `frame ${f}'s particles`);
@@ -89,6 +93,9 @@
       transparent: opacity < 1, opacity: opacity,
     });
   }
+
+  // The contacts to draw for `frame`: its own, or the last recorded before it when its were left out
+  const contactsOf = (replay, frame) => (frame.contactsFrom === null ? [] : replay.frames[frame.contactsFrom].contacts);
 
   // The three.js objects of one replay in their own scene, and update(frame) that poses them.
   function buildWorld(replay) {
@@ -230,10 +237,11 @@
           springs.geometry.attributes.position.needsUpdate = true;
         }
       }
-      const n = showContacts ? frame.contacts.length : 0;
+      const contacts = contactsOf(replay, frame);
+      const n = showContacts ? contacts.length : 0;
       const cp = contactGeometry.attributes.position.array, cc = contactGeometry.attributes.color.array;
       const sp = shaftGeometry.attributes.position.array;
-      frame.contacts.slice(0, n).forEach((c, k) => {
+      contacts.slice(0, n).forEach((c, k) => {
         cp.set(c.p, 3 * k);
         const red = Math.min(1, c.depth / 0.005);  // red at 5 mm of overlap and deeper, green when touching
         cc.set([red, 1 - red, 0], 3 * k);
@@ -368,11 +376,12 @@
       const f = first.frames[index];
       $("frame-index").textContent = String(index + 1);
       $("time").textContent = f.time.toFixed(3);
-      const deepest = f.contacts.reduce((d, c) => Math.max(d, c.depth), 0);
+      const deepest = contactsOf(first, f).reduce((d, c) => Math.max(d, c.depth), 0);
       $("stats").textContent = replays.map((r, k) => {
         const g = r.frames[index];
+        const from = g.contactsFrom === null || g.contactsFrom === index ? "" : ` of frame ${g.contactsFrom + 1} (contacts recorded on some frames only)`;
         return (replays.length > 1 ? labels[k] + ": " : "") +
-          `KE ${g.kinetic.toPrecision(5)} J, PE ${g.potential.toPrecision(5)} J, ${g.contacts.length} contacts` +
+          `KE ${g.kinetic.toPrecision(5)} J, PE ${g.potential.toPrecision(5)} J, ${contactsOf(r, g).length} contacts${from}` +
           `${k === 0 ? ` (deepest ${(1000 * deepest).toFixed(2)} mm)` : ""}, ${g.iterations} iterations`;
       }).join("; ");
       drawEnergy($("energy"), replays, index);
@@ -414,6 +423,20 @@
     $("contacts").checked = /contacts/.test(location.hash);
     const wanted = /frame=(last|\d+)/.exec(location.hash);
     show(wanted ? (wanted[1] === "last" ? frames - 1 : Number(wanted[1]) - 1) : 0);
+    // #measure shows every frame once, as playing does (poses, contacts, the panel, the energy
+    // plot), waiting for the GPU after each, and writes the time per frame into #measured
+    if (/measure/.test(location.hash)) {
+      const gl = renderer.getContext(), times = [];
+      for (let i = 0; i < frames; ++i) {
+        const start = performance.now();
+        show(i);
+        gl.finish();
+        times.push(performance.now() - start);
+      }
+      times.sort((a, b) => a - b);
+      const mean = times.reduce((a, b) => a + b, 0) / frames;
+      $("measured").textContent = `${frames} frames, ${mean.toFixed(2)} ms per frame (median ${times[frames >> 1].toFixed(2)}, slowest ${times[frames - 1].toFixed(2)})`;
+    }
     $("play").textContent = playing ? "pause" : "play";
     requestAnimationFrame(tick);
   }

@@ -14,7 +14,9 @@ namespace {
 
 constexpr std::string_view kMagic = "PHYSLAB-REPLAY";
 constexpr std::size_t kBodyFixedBytes = 32;
-constexpr std::size_t kFrameFixedBytes = 20;
+constexpr std::size_t kFrameFixedBytes = 24;
+constexpr std::size_t kFrameFixedBytesV1 = 20;
+constexpr std::uint32_t kContactsRecorded = 1u;  // bit 0 of a frame's flags
 constexpr std::size_t kPoseBytes = 28;
 constexpr std::size_t kParticleBytes = 12;
 constexpr std::size_t kContactBytes = 40;
@@ -142,6 +144,9 @@ std::string encodeReplay(const Replay& replay) {
       throw InvalidInput(name + " has " + std::to_string(frame.particles.size()) + " particle numbers, not 3 x " +
                          std::to_string(P) + " particles");
     }
+    if (!frame.contacts_recorded && !frame.contacts.empty()) {
+      throw InvalidInput(name + " holds contacts but says they were not recorded");
+    }
     for (const ReplayContact& c : frame.contacts) {
       if (c.a >= B || c.b >= B) throw InvalidInput(name + ": a contact names a body that is not there");
     }
@@ -173,6 +178,7 @@ std::string encodeReplay(const Replay& replay) {
     out.f32(frame.potential_energy);
     out.u32(frame.iterations);
     out.u32(static_cast<std::uint32_t>(frame.contacts.size()));
+    out.u32(frame.contacts_recorded ? kContactsRecorded : 0u);
     for (float v : frame.poses) out.f32(v);
     for (float v : frame.particles) out.f32(v);
     for (const ReplayContact& c : frame.contacts) {
@@ -196,9 +202,9 @@ Replay decodeReplay(std::string_view bytes, std::string_view what) {
   in.skip(kMagic.size());
   in.need(2, "the version");
   const std::uint16_t version = in.u16();
-  if (version > kReplayVersion) {
-    throw InvalidInput(source + ": version " + std::to_string(version) + " at byte 14 is newer than this reader's (" +
-                       std::to_string(kReplayVersion) + "): update PhysLab");
+  if (version == 0 || version > kReplayVersion) {
+    throw InvalidInput(source + ": version " + std::to_string(version) + " at byte 14 is not one this reader knows (1-" +
+                       std::to_string(kReplayVersion) + "): a newer one needs an updated PhysLab");
   }
   Replay replay;
   in.need(16, "the header's counts");
@@ -231,16 +237,21 @@ Replay decodeReplay(std::string_view bytes, std::string_view what) {
   replay.springs.resize(2 * static_cast<std::size_t>(S));
   for (std::uint32_t& s : replay.springs) s = in.u32();
   // Room for the frames the bytes can hold at most: a corrupt count allocates no more
-  replay.frames.reserve(std::min<std::size_t>(F, in.remaining() / replayFrameBytes(B, P, 0)));
+  const std::size_t frame_fixed = version == 1 ? kFrameFixedBytesV1 : kFrameFixedBytes;
+  replay.frames.reserve(std::min<std::size_t>(F, in.remaining() / (frame_fixed + kPoseBytes * B + kParticleBytes * P)));
   for (std::uint32_t f = 0; f < F; ++f) {
     ReplayFrame& frame = replay.frames.emplace_back();
     const std::string name = "frame " + std::to_string(f);
-    in.need(kFrameFixedBytes, name + "'s time, energies and counts");
+    in.need(frame_fixed, name + "'s time, energies and counts");
     frame.time = in.f32();
     frame.kinetic_energy = in.f32();
     frame.potential_energy = in.f32();
     frame.iterations = in.u32();
     const std::uint32_t C = in.u32();
+    if (version > 1) frame.contacts_recorded = (in.u32() & kContactsRecorded) != 0;
+    if (!frame.contacts_recorded && C != 0) {
+      throw InvalidInput(source + ": " + name + " holds " + std::to_string(C) + " contacts but says they were not recorded");
+    }
     in.need(kPoseBytes * B, name + "'s poses");
     frame.poses.resize(7 * static_cast<std::size_t>(B));
     for (float& v : frame.poses) v = in.f32();

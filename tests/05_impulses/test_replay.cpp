@@ -111,19 +111,19 @@ TEST_CASE("replay: a hand-made replay survives a write and a read, every field e
 TEST_CASE("replay: the file's size is header + shapes + springs + frames, exactly", "[common]") {
   const Replay replay = handMadeReplay();
   // Header 40 + title 9 + settings 31; box and plane 32 each, the tetrahedron 32 + 12 x 4 + 12 x 4;
-  // one spring 8; frames 20 + 28 x 3 + 12 x 2 (+ 40 for the second's contact)
-  const std::size_t expected = (40 + 9 + 31) + (32 + 32 + (32 + 48 + 48)) + 8 + (128 + 168);
+  // one spring 8; frames 24 + 28 x 3 + 12 x 2 (+ 40 for the second's contact)
+  const std::size_t expected = (40 + 9 + 31) + (32 + 32 + (32 + 48 + 48)) + 8 + (132 + 172);
   CHECK(replayHeaderBytes(replay) == 80);
-  CHECK(replayFrameBytes(3, 2, 0) == 128);
-  CHECK(replayFrameBytes(3, 2, 1) == 168);
+  CHECK(replayFrameBytes(3, 2, 0) == 132);
+  CHECK(replayFrameBytes(3, 2, 1) == 172);
   CHECK(encodeReplay(replay).size() == expected);
 }
 
 TEST_CASE("replay: a truncated file is refused naming the byte where it ends", "[common]") {
   const std::string bytes = encodeReplay(handMadeReplay());
   REQUIRE(replayRefusal(bytes).empty());
-  // Cuts in the version, the counts, the title, a body, the spring, the first frame's poses and
-  // the second frame's contact
+  // Cuts in the version, the counts, the title, a body, the first frame's counts, and the second
+  // frame's contact
   for (std::size_t cut : {std::size_t{15}, std::size_t{20}, std::size_t{45}, std::size_t{100}, std::size_t{290},
                           std::size_t{330}, bytes.size() - 1}) {
     const std::string message = replayRefusal(bytes.substr(0, cut));
@@ -131,20 +131,52 @@ TEST_CASE("replay: a truncated file is refused naming the byte where it ends", "
     CHECK(message.find("truncated at byte " + std::to_string(cut)) != std::string::npos);
     CHECK(message.find("test.replay") != std::string::npos);
   }
-  CHECK(replayRefusal(bytes.substr(0, 550)).find("frame 1's 1 contacts") != std::string::npos);
+  CHECK(replayRefusal(bytes.substr(0, 560)).find("frame 1's 1 contacts") != std::string::npos);
   CHECK(replayRefusal(bytes + "x").find("1 bytes after the last frame, at byte " + std::to_string(bytes.size())) !=
         std::string::npos);
 }
 
-TEST_CASE("replay: a wrong magic or a newer version is refused, naming it", "[common]") {
+TEST_CASE("replay: a wrong magic or an unknown version is refused, naming it", "[common]") {
   std::string bytes = encodeReplay(handMadeReplay());
   std::string foreign = bytes;
   foreign[0] = 'Q';
   CHECK(replayRefusal(foreign).find("not a PhysLab replay") != std::string::npos);
   CHECK(replayRefusal("").find("not a PhysLab replay") != std::string::npos);
-  bytes[14] = 2;  // version 2, little-endian
-  CHECK(replayRefusal(bytes).find("version 2 at byte 14 is newer") != std::string::npos);
+  bytes[14] = 3;  // version 3, little-endian
+  CHECK(replayRefusal(bytes).find("version 3 at byte 14 is not one this reader knows (1-2)") != std::string::npos);
+  bytes[14] = 0;
+  CHECK(replayRefusal(bytes).find("version 0 at byte 14") != std::string::npos);
   CHECK_THROWS_AS(readReplay("physlab_no_such_file.replay"), InvalidInput);
+}
+
+TEST_CASE("replay: a frame without its contacts survives a round trip; version 1 files still read", "[common]") {
+  Replay replay = handMadeReplay();
+  replay.frames[0].contacts_recorded = false;
+  const Replay back = decodeReplay(encodeReplay(replay), "test.replay");
+  CHECK_FALSE(back.frames[0].contacts_recorded);
+  CHECK(back.frames[1].contacts_recorded);
+  CHECK(back.frames[1].contacts.size() == 1);
+  // A frame that says its contacts were left out but holds some is refused on both sides
+  replay.frames[1].contacts_recorded = false;
+  try {
+    encodeReplay(replay);
+    FAIL("a frame holding contacts it says were not recorded was written");
+  } catch (const InvalidInput& e) {
+    CHECK(std::string(e.what()).find("frame 1 holds contacts but says they were not recorded") != std::string::npos);
+  }
+  std::string bytes = encodeReplay(handMadeReplay());
+  bytes[412 + 20] = 0;  // frame 1 (from byte 412): flags cleared, its contact count still 1
+  CHECK(replayRefusal(bytes).find("frame 1 holds 1 contacts but says they were not recorded") != std::string::npos);
+  // Version 1: frames of 20 fixed bytes, no flags (frames start at 280 and 412 in version 2)
+  std::string v1 = encodeReplay(handMadeReplay());
+  v1.erase(412 + 20, 4);
+  v1.erase(280 + 20, 4);
+  v1[14] = 1;
+  const Replay old = decodeReplay(v1, "old.replay");
+  REQUIRE(old.frames.size() == 2);
+  CHECK(old.frames[0].contacts_recorded);
+  CHECK(old.frames[1].contacts.size() == 1);
+  CHECK(old.frames[1].poses == handMadeReplay().frames[1].poses);
 }
 
 TEST_CASE("replay: a recorded box rain holds a frame per step with the World's poses", "[common]") {
@@ -175,6 +207,10 @@ TEST_CASE("replay: a recorded box rain holds a frame per step with the World's p
   }
   CHECK(replay.frames.size() == static_cast<std::size_t>(steps));
   CHECK(touched);  // the rain lands on the walls or the ground within 0.4 s
+  recordFrame(world, replay, false);
+  CHECK_FALSE(replay.frames.back().contacts_recorded);
+  CHECK(replay.frames.back().contacts.empty());
+  CHECK(replay.frames.back().poses == replay.frames[replay.frames.size() - 2].poses);  // no step between the two
   const Replay back = decodeReplay(encodeReplay(replay), "box rain");
   CHECK(back.frames.size() == replay.frames.size());
   CHECK(back.frames.back().poses == replay.frames.back().poses);

@@ -64,7 +64,8 @@ struct ReplayFrame {
   std::uint32_t iterations = 0;        ///< the solver's iterations (sweeps or pivots) in the step that ended here
   std::vector<float> poses;            ///< per body x, y, z [m], q_w, q_x, q_y, q_z: 7 per body, world frame
   std::vector<float> particles;        ///< per particle x, y, z, world frame [m]: 3 per particle
-  std::vector<ReplayContact> contacts;  ///< this frame's contact points
+  std::vector<ReplayContact> contacts;  ///< this frame's contact points (none when not recorded)
+  bool contacts_recorded = true;       ///< false: this frame's contacts were left out to keep a large scene's file small
 };
 
 /// A recorded scene: shapes once, then frames.
@@ -78,13 +79,15 @@ struct Replay {
 };
 
 /// The format's version; readReplay() refuses a newer one.
-constexpr std::uint16_t kReplayVersion = 1;
+/// Version 2 added a frame's flags (contacts recorded or not); version 1 files still read, every
+/// frame's contacts recorded.
+constexpr std::uint16_t kReplayVersion = 2;
 
 /// Bytes of the header: 40 plus the title's and the settings' bytes.
 std::size_t replayHeaderBytes(const Replay& replay);
 /// Bytes of one body's shape: 32 + 12 V + 12 K (V vertices, K triangles).
 std::size_t replayBodyBytes(const ReplayBody& body);
-/// Bytes of one frame: 20 + 28 B + 12 P + 40 C (B bodies, P particles, C contacts).
+/// Bytes of one frame: 24 + 28 B + 12 P + 40 C (B bodies, P particles, C contacts).
 std::size_t replayFrameBytes(std::size_t bodies, std::size_t particles, std::size_t contacts);
 
 /// The file's bytes. InvalidInput, naming the frame and field, when a frame's poses or particles
@@ -126,8 +129,11 @@ Replay startReplay(const World& world, std::string title);
 /// Appends the World's state now as a frame: every body's pose, the last step's contacts
 /// (World::contacts(): point, normal, depth, normal impulse j), the energies and the solver
 /// iterations of World::diagnostics(). Call it after a step (a World not yet stepped has no
-/// diagnostics: zeros); a World that is not recorded pays nothing. InvalidInput when the replay's body count is not the World's.
-void recordFrame(const World& world, Replay& replay);
+/// diagnostics: zeros); a World that is not recorded pays nothing. With `contacts` false the frame
+/// holds the poses and energies only (ReplayFrame::contacts_recorded false): a scene of hundreds
+/// of bodies records its thousands of contact points on some frames only, and the viewer shows
+/// the last recorded ones. InvalidInput when the replay's body count is not the World's.
+void recordFrame(const World& world, Replay& replay, bool contacts = true);
 ///@}
 
 }  // namespace physlab

@@ -21,7 +21,7 @@ Replay startReplay(const World& world, std::string title) {
   return replay;
 }
 
-void recordFrame(const World& world, Replay& replay) {
+void recordFrame(const World& world, Replay& replay, bool contacts) {
   const std::vector<BodyState>& states = world.states();
   if (states.size() != replay.bodies.size()) {
     throw InvalidInput("recordFrame: the World has " + std::to_string(states.size()) + " bodies, the replay " +
@@ -39,6 +39,8 @@ void recordFrame(const World& world, Replay& replay) {
       frame.poses.push_back(static_cast<float>(v));
     }
   }
+  frame.contacts_recorded = contacts;
+  if (!contacts) return;
   frame.contacts.reserve(world.contacts().size());
   for (const Contact& c : world.contacts()) {
     ReplayContact& r = frame.contacts.emplace_back();
