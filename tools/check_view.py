@@ -41,15 +41,16 @@ CANVAS_BACKGROUND = (0xf4, 0xf4, 0xf0)  # the scene's background colour (viewer/
 BROWSER_INITIATOR = "not an origin"
 
 
-def chromium(browser, page, profile, extra, fragment=""):
-    """Runs headless Chromium on page#fragment with the network blocked; returns its stdout."""
+def chromium(browser, page, profile, extra, fragment="", virtual_time=True):
+    """Runs headless Chromium on page#fragment with the network blocked; returns its stdout. With
+    virtual_time, timers run ahead for 4 s of page time; without, the page's clock is the wall's."""
+    budget = ["--virtual-time-budget=4000"] if virtual_time else []
     cmd = [browser, "--headless", "--no-sandbox", "--no-first-run", "--disable-gpu", "--enable-unsafe-swiftshader",
            "--host-resolver-rules=MAP * ~NOTFOUND", "--proxy-server=http://127.0.0.1:9",
            "--disable-background-networking", "--disable-component-update", "--disable-sync",
            "--disable-default-apps", "--disable-domain-reliability", f"--user-data-dir={profile}",
-           f"--window-size={WINDOW[0]},{WINDOW[1]}", "--virtual-time-budget=4000", *extra,
-           page.resolve().as_uri() + fragment]
-    result = subprocess.run(cmd, capture_output=True, text=True, timeout=180)
+           f"--window-size={WINDOW[0]},{WINDOW[1]}", *budget, *extra, page.resolve().as_uri() + fragment]
+    result = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     if result.returncode != 0:
         raise RuntimeError(f"chromium failed (status {result.returncode}): {result.stderr.strip()[-300:]}")
     return result.stdout
@@ -141,12 +142,8 @@ def element_text(dom, element_id):
 def measure(browser, page):
     """The page's own timing of showing every frame (#measure), as it writes it into #measured."""
     with tempfile.TemporaryDirectory(prefix="physlab-view-") as tmp:
-        # No virtual time: the page's clock must be the wall clock
-        cmd = [browser, "--headless", "--no-sandbox", "--no-first-run", "--disable-gpu", "--enable-unsafe-swiftshader",
-               "--host-resolver-rules=MAP * ~NOTFOUND", "--proxy-server=http://127.0.0.1:9",
-               f"--user-data-dir={Path(tmp) / 'profile'}", f"--window-size={WINDOW[0]},{WINDOW[1]}", "--dump-dom",
-               page.resolve().as_uri() + "#frame=1&contacts&measure"]
-        dom = subprocess.run(cmd, capture_output=True, text=True, timeout=300).stdout
+        dom = chromium(browser, page, Path(tmp) / "profile", ["--dump-dom"], "#frame=1&contacts&measure",
+                       virtual_time=False)
     return element_text(dom, "measured") or "no timing: the page did not finish showing its frames"
 
 
