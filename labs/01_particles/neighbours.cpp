@@ -16,7 +16,8 @@ void neighbourPairs(ConstPoints x, double r, std::vector<NeighbourPair>& pairs, 
   // Lay the grid over the bounding box: cell edge r, doubled while the box needs more than 8N cells
   // TODO(student): lo = componentwise minimum; dims[a] = floor(extent[a] / h) + 1 (see NeighbourGrid).
   // Bin the points: count per cell, prefix sums, then place each index (a stable counting sort)
-  // TODO(student): grid.cell(a, i) = floor((x(a, i) - lo[a]) / h); start[c] .. start[c + 1] index order.
+  // TODO(student): grid.cell(a, i) = floor((x(a, i) - lo[a]) / h); start[c] .. start[c + 1] index order;
+  // TODO(student): copy each point into grid.sorted beside its index in order (the search reads it there).
   // The placing loop advanced each start to the next cell's: shift back by one cell
   // TODO(student): only if your placing loop moved the starts; stats.cells and stats.cell_size too.
   // For each i, check every j > i in its own and the 26 adjacent cells, then sort i's pairs by j

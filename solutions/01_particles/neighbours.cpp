@@ -36,6 +36,7 @@ void neighbourPairs(ConstPoints x, double r, std::vector<NeighbourPair>& pairs, 
   grid.cell.resize(3, n);
   grid.start.assign(static_cast<std::size_t>(cells) + 1, 0);
   grid.order.resize(static_cast<std::size_t>(n));
+  grid.sorted.resize(3, n);
   const auto linear = [&](Index cx, Index cy, Index cz) { return cx + grid.dims[0] * (cy + grid.dims[1] * cz); };
   for (Index i = 0; i < n; ++i) {
     for (int a = 0; a < 3; ++a) grid.cell(a, i) = static_cast<Index>(std::floor((x(a, i) - grid.lo[a]) / grid.h));
@@ -44,6 +45,7 @@ void neighbourPairs(ConstPoints x, double r, std::vector<NeighbourPair>& pairs, 
   for (Index c = 0; c < cells; ++c) grid.start[c + 1] += grid.start[c];
   for (Index i = 0; i < n; ++i) {
     const Index c = linear(grid.cell(0, i), grid.cell(1, i), grid.cell(2, i));
+    grid.sorted.col(grid.start[c]) = x.col(i);
     grid.order[static_cast<std::size_t>(grid.start[c]++)] = i;
   }
   // The placing loop advanced each start to the next cell's: shift back by one cell
@@ -51,26 +53,39 @@ void neighbourPairs(ConstPoints x, double r, std::vector<NeighbourPair>& pairs, 
   grid.start[0] = 0;
   stats.cells = cells;
   stats.cell_size = grid.h;
-  // For each i, check every j > i in its own and the 26 adjacent cells, then sort i's pairs by j
+  // Visit the points cell by cell (neighbouring cells then stay in cache); for each point i check
+  // every j > i in its own and the 26 adjacent cells, keeping i's pairs as one run
   const double r2 = r * r;
-  for (Index i = 0; i < n; ++i) {
-    const std::size_t first = pairs.size();
+  grid.found.clear();
+  grid.run.resize(static_cast<std::size_t>(n));
+  for (Index k = 0; k < n; ++k) {
+    const Index i = grid.order[static_cast<std::size_t>(k)];
     const Index cx = grid.cell(0, i), cy = grid.cell(1, i), cz = grid.cell(2, i);
+    const Vec3 xi = grid.sorted.col(k);
+    const std::size_t first = grid.found.size();
     for (Index z = std::max<Index>(cz - 1, 0); z <= std::min(cz + 1, grid.dims[2] - 1); ++z) {
       for (Index y = std::max<Index>(cy - 1, 0); y <= std::min(cy + 1, grid.dims[1] - 1); ++y) {
         for (Index xx = std::max<Index>(cx - 1, 0); xx <= std::min(cx + 1, grid.dims[0] - 1); ++xx) {
           const Index c = linear(xx, y, z);
-          for (Index k = grid.start[c]; k < grid.start[c + 1]; ++k) {
-            const Index j = grid.order[static_cast<std::size_t>(k)];
+          for (Index m = grid.start[c]; m < grid.start[c + 1]; ++m) {
+            const Index j = grid.order[static_cast<std::size_t>(m)];
             if (j <= i) continue;
             ++stats.distance_checks;
-            if ((x.col(i) - x.col(j)).squaredNorm() <= r2) pairs.push_back({i, j});
+            if ((xi - grid.sorted.col(m)).squaredNorm() <= r2) grid.found.push_back({i, j});
           }
         }
       }
     }
-    std::sort(pairs.begin() + static_cast<std::ptrdiff_t>(first), pairs.end(),
-              [](const NeighbourPair& a, const NeighbourPair& b) { return a.j < b.j; });
+    grid.run[static_cast<std::size_t>(i)] = {static_cast<Index>(first), static_cast<Index>(grid.found.size())};
+  }
+  // Copy the runs out in increasing i, each sorted by j
+  pairs.resize(grid.found.size());
+  auto out = pairs.begin();
+  for (Index i = 0; i < n; ++i) {
+    const auto [first, last] = grid.run[static_cast<std::size_t>(i)];
+    const auto end = std::copy(grid.found.begin() + first, grid.found.begin() + last, out);
+    std::sort(out, end, [](const NeighbourPair& a, const NeighbourPair& b) { return a.j < b.j; });
+    out = end;
   }
 }
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physlab/math.hpp"
@@ -41,7 +42,9 @@ struct NeighbourStats {
 /// smallest \f$k\f$ that needs at most \f$8N\f$ (memory stays \f$O(N)\f$). Point \f$i\f$ lies in
 /// cell \f$c_a = \lfloor (x_{i,a} - lo_a) / h \rfloor\f$ along each axis \f$a\f$, and
 /// `dims[a]` \f$= c_a^{max} + 1\f$. A cell's linear index is \f$c_x + d_x (c_y + d_y c_z)\f$.
-/// A point on a cell border belongs to the upper cell.
+/// A point on a cell border belongs to the upper cell. The search visits the points cell by cell
+/// (so that the cells it reads stay in cache) and then copies each point's run of pairs into the
+/// output in increasing index order.
 struct NeighbourGrid {
   Vec3 lo = Vec3::Zero();                      ///< lower corner of the grid [m]
   double h = 0.0;                              ///< cell edge [m], at least r
@@ -49,6 +52,13 @@ struct NeighbourGrid {
   Eigen::Matrix<Index, 3, Eigen::Dynamic> cell;  ///< integer cell coordinates of each point, 3 x N
   std::vector<Index> start;  ///< point slots of cell c are order[start[c]] ... order[start[c+1] - 1]
   std::vector<Index> order;  ///< point indices sorted by cell, increasing index within a cell
+  /// The points in the order of `order` (column k is point order[k]): a cell's points lie side by
+  /// side in memory, so the search reads them without a cache miss each.
+  Mat3X sorted;
+  /// The pairs as the search finds them, cell by cell: point i's pairs side by side, one run per i.
+  std::vector<NeighbourPair> found;
+  /// Where point i's run lies in `found`: entries run[i].first to run[i].second - 1.
+  std::vector<std::pair<Index, Index>> run;
 };
 
 /// \name Neighbour search (student functions, Lab 1 section 5)
