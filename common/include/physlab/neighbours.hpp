@@ -71,6 +71,10 @@ struct NeighbourGrid {
 /// 26 adjacent cells. `stats` gets the number of distance checks (each candidate pair
 /// \f$i < j\f$ in adjacent cells is checked exactly once) and the grid's size.
 /// Costs \f$O(N + \text{candidates})\f$, about \f$O(N)\f$ on a cloud of bounded density.
+/// Cells at least \f$r\f$ wide put two points within \f$r\f$ in the same or adjacent cells; in
+/// floating point the cell coordinates are rounded, so a pair within an ulp or so of \f$r\f$ whose
+/// coordinates also lie within an ulp of cell borders could land two cells apart and be missed.
+/// Coordinates and radii exact in binary (the tests' lattices) never do.
 /// Throws InvalidInput, naming it, when \f$r\f$ is not positive and finite or a point is not finite.
 void neighbourPairs(ConstPoints x, double r, std::vector<NeighbourPair>& pairs, NeighbourGrid& grid,
                     NeighbourStats& stats);
