@@ -302,10 +302,9 @@ void curlNoiseDemo(const DemoOptions& options, std::vector<std::string>& written
       paths.x.push_back(NAN);
       paths.y.push_back(NAN);
     }
-    chart.add(paths);
+    chart.add(paths).add(circle);  // the disc alone, without paths, would show nothing of the student's code
     std::cout << "curl noise: closest approach of any tracer to the disc: " << fmt(closest) << " m\n";
   });
-  chart.add(circle);
   for (const auto& p : chart.save(options.out + "/lab01_curl_noise")) written.push_back(p);
 }
 
