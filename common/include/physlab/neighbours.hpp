@@ -21,7 +21,9 @@ namespace physlab {
 struct NeighbourPair {
   Index i;  ///< the smaller index
   Index j;  ///< the larger index
+  /// Same two indices.
   bool operator==(const NeighbourPair& o) const { return i == o.i && j == o.j; }
+  /// Not the same two indices.
   bool operator!=(const NeighbourPair& o) const { return !(*this == o); }
 };
 
