@@ -20,8 +20,12 @@ void neighbourPairs(ConstPoints x, double r, std::vector<NeighbourPair>& pairs, 
   // TODO(student): copy each point into grid.sorted beside its index in order (the search reads it there).
   // The placing loop advanced each start to the next cell's: shift back by one cell
   // TODO(student): only if your placing loop moved the starts; stats.cells and stats.cell_size too.
-  // For each i, check every j > i in its own and the 26 adjacent cells, then sort i's pairs by j
-  // TODO(student): count each check in stats.distance_checks; keep pairs with squaredNorm() <= r * r.
+  // Visit the points cell by cell (neighbouring cells then stay in cache); for each point i check
+  // every j > i in its own and the 26 adjacent cells, keeping i's pairs as one run
+  // TODO(student): count each check in stats.distance_checks; keep pairs with squaredNorm() <= r * r in
+  // TODO(student): grid.found, and note where i's run starts and ends in grid.run[i].
+  // Copy the runs out in increasing i, each sorted by j
+  // TODO(student): pairs gets run 0, run 1, ...; std::sort each run by j.
   notImplemented("neighbourPairs", "Lab 1 handout, section 5", x, r, pairs, grid, stats);
 }
 
