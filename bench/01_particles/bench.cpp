@@ -6,7 +6,13 @@
 // triad a = b + s c over arrays of the state's length (6N doubles) is the cheapest such update,
 // so "steps cost k triads" says how far a method is from the memory floor. Every step is also
 // counted for heap allocations (after the timing, so the workspace is sized): a step makes none.
+//
+// Then the fixed-radius neighbour search (section 5): time per search on a uniform cloud of
+// constant density (about 10 neighbours within r per particle) for N = 10^2 ... 10^6, the grid
+// against brute force (up to N = 3 10^4, where one search already takes about a second), drawn on a
+// log-log chart with O(N^2) and O(N) slope guides, and the crossover N where the grid wins.
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -19,8 +25,11 @@
 #endif
 
 #include "physlab/demo.hpp"
+#include "physlab/error.hpp"
 #include "physlab/integrators.hpp"
+#include "physlab/neighbours.hpp"
 #include "physlab/particles.hpp"
+#include "physlab/plot.hpp"
 
 #include "../allocation_counter.hpp"
 
@@ -118,6 +127,84 @@ void twoPassSymplecticEuler(VecX& X, VecX& a, const VecX& inverse_masses, const 
   }
 }
 
+// N points uniform in a cube whose side keeps the density at 10 / (4/3 pi r^3), r = 1: about 10
+// neighbours each, whatever N.
+Mat3X uniformCloud(Index n) {
+  std::mt19937_64 rng(3);
+  const double side = std::cbrt(static_cast<double>(n) * (4.0 / 3.0) * M_PI / 10.0);
+  std::uniform_real_distribution<double> coordinate(0.0, side);
+  Mat3X x(3, n);
+  for (Index i = 0; i < n; ++i) x.col(i) << coordinate(rng), coordinate(rng), coordinate(rng);
+  return x;
+}
+
+void neighbourBenchmark(const DemoOptions& options, double min_seconds) {
+  const std::vector<Index> sizes = options.quick ? std::vector<Index>{100, 1000, 10000, 100000}
+                                                 : std::vector<Index>{100, 300, 1000, 3000, 10000, 30000,
+                                                                      100000, 300000, 1000000};
+  const Index brute_limit = options.quick ? 10000 : 30000;
+  const double r = 1.0;
+  Table table({"N", "method", "ms / search", "distance checks", "pairs", "allocations per search"});
+  Series grid_series{"uniform grid", {}, {}, "linespoints lw 2 lc rgb '#2266aa'"};
+  Series brute_series{"brute force", {}, {}, "linespoints lw 2 lc rgb '#cc6633'"};
+  std::vector<NeighbourPair> pairs;
+  NeighbourGrid grid;
+  NeighbourStats stats;
+  for (const Index n : sizes) {
+    const Mat3X cloud = uniformCloud(n);
+    const ConstPoints x(cloud.data(), 3, n);
+    const auto grid_search = [&] { neighbourPairs(x, r, pairs, grid, stats); };
+    const double grid_time = secondsPerCall(grid_search, min_seconds);
+    const std::string allocations =
+        bench::allocationsCounted() ? fmt(static_cast<double>(bench::allocationsOf(grid_search))) : "-";
+    table.add({std::to_string(n), "uniform grid", fmt(1e3 * grid_time), std::to_string(stats.distance_checks),
+               std::to_string(pairs.size()), allocations});
+    grid_series.x.push_back(static_cast<double>(n));
+    grid_series.y.push_back(grid_time);
+    if (n > brute_limit) continue;
+    const std::size_t grid_pairs = pairs.size();
+    const double brute_time = secondsPerCall([&] { bruteForcePairs(x, r, pairs, stats); }, min_seconds);
+    if (pairs.size() != grid_pairs) throw NumericalFailure("grid and brute force found different pair counts");
+    table.add({std::to_string(n), "brute force", fmt(1e3 * brute_time), std::to_string(stats.distance_checks),
+               std::to_string(pairs.size()), "-"});
+    brute_series.x.push_back(static_cast<double>(n));
+    brute_series.y.push_back(brute_time);
+  }
+  // The crossover: where log(brute / grid) changes sign between two measured sizes, interpolated in log N.
+  double crossover = NAN;
+  for (std::size_t k = 1; k < brute_series.x.size() && std::isnan(crossover); ++k) {
+    const double before = std::log(brute_series.y[k - 1] / grid_series.y[k - 1]);
+    const double after = std::log(brute_series.y[k] / grid_series.y[k]);
+    if (before <= 0.0 && after > 0.0) {
+      const double t = -before / (after - before);
+      crossover = std::exp((1.0 - t) * std::log(brute_series.x[k - 1]) + t * std::log(brute_series.x[k]));
+    }
+  }
+  if (std::isnan(crossover) && !brute_series.y.empty() && brute_series.y[0] > grid_series.y[0]) {
+    crossover = brute_series.x[0];  // the grid already wins at the smallest size
+  }
+  // Slope guides through the last brute-force point (N^2) and the last grid point (N).
+  const double nb = brute_series.x.back(), tb = brute_series.y.back();
+  const double ng = grid_series.x.back(), tg = grid_series.y.back();
+  Series quadratic{"O(N^2)", {}, {}, "lines dt 2 lw 1 lc rgb '#888888'"};
+  Series linear{"O(N)", {}, {}, "lines dt 3 lw 1 lc rgb '#444444'"};
+  for (const double n : {grid_series.x.front(), ng}) {
+    quadratic.x.push_back(n);
+    quadratic.y.push_back(tb * (n / nb) * (n / nb));
+    linear.x.push_back(n);
+    linear.y.push_back(tg * n / ng);
+  }
+  Chart chart("Fixed-radius neighbour search, about 10 neighbours per particle", "N (particles)",
+              "seconds per search (all pairs within r)");
+  chart.logX().logY().add(grid_series).add(brute_series).add(quadratic).add(linear);
+  if (!std::isnan(crossover)) chart.mark({crossover, "crossover N = " + fmt(crossover, 2)});
+  std::cout << "\nLab 1 benchmark: fixed-radius neighbour search, best of 3 batches after a warm-up\n";
+  table.print(std::cout);
+  std::cout << "crossover (grid faster than brute force from): N = " << fmt(crossover, 2) << "\n";
+  std::cout << "wrote " << table.saveMarkdown(options.out + "/lab01_bench_neighbours.md") << "\n";
+  for (const std::string& path : chart.save(options.out + "/lab01_bench_neighbours")) std::cout << "wrote " << path << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -192,6 +279,7 @@ int main(int argc, char** argv) {
     std::cout << "Lab 1 benchmark: gravity + drag, one step per call, best of 3 batches (anchor and Odeint: best of 5, alternating with ours)\n";
     table.print(std::cout);
     std::cout << "\nwrote " << table.saveMarkdown(options.out + "/lab01_bench.md") << "\n";
+    neighbourBenchmark(options, min_seconds);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "bench_01_particles: " << e.what() << "\n";

@@ -1,15 +1,19 @@
 // Lab 1 demo: how the integrators trade cost for accuracy, and where they break.
-// Writes energy-drift, work-precision and stability charts and an N-body animation.
+// Writes energy-drift, work-precision and stability charts and an N-body animation; then a flock
+// of boids (an animation and its order parameter) and tracer paths in a curl-noise flow.
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <random>
 
+#include "physlab/curl_noise.hpp"
 #include "physlab/demo.hpp"
 #include "physlab/error.hpp"
 #include "physlab/integrators.hpp"
+#include "physlab/neighbours.hpp"
 #include "physlab/particles.hpp"
 #include "physlab/plot.hpp"
 #include "physlab/scenes.hpp"
@@ -175,6 +179,135 @@ void nbodyAnimation(const DemoOptions& options, std::vector<std::string>& writte
   });
 }
 
+// A force that keeps each particle near the cruising speed s: f = k (s - |v|) v / |v|. Boids
+// steer but do not propel: alignment averages velocities, which shrinks them, and without this a
+// flock of random headings slows to a stop instead of flying off together.
+class Cruise final : public Force {
+ public:
+  Cruise(double speed_, double k_) : speed(speed_), k(k_) {}
+  std::string name() const override { return "cruise"; }
+  void accumulate(const ParticleView& s, Points F) const override {
+    for (Index i = 0; i < s.v.cols(); ++i) {
+      const double v = s.v.col(i).norm();
+      if (v > 0.0) F.col(i) += (k * (speed - v) / v) * s.v.col(i);
+    }
+  }
+  double potential(const ParticleView& /*s*/) const override { return 0.0; }
+  const double speed, k;
+};
+
+// A flock of boids in the plane (with a cruise force), stepped by symplectic Euler: with
+// alignment (w_a = 8) and without (w_a = 0, separation and cohesion only), from the same random
+// headings. Writes the order parameter of both over time, and an animation of the aligning flock.
+void flockDemo(const DemoOptions& options, std::vector<std::string>& written) {
+  const Index n = 250;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coordinate(-1.5, 1.5), angle(0.0, 2.0 * M_PI);
+  Mat3X x0 = Mat3X::Zero(3, n), v0 = Mat3X::Zero(3, n);
+  for (Index i = 0; i < n; ++i) {
+    x0.col(i) << coordinate(rng), coordinate(rng), 0.0;
+    const double a = angle(rng);
+    v0.col(i) << std::cos(a), std::sin(a), 0.0;
+  }
+  const double h = 0.02;
+  const int frames = options.quick ? 30 : 60, steps_per_frame = 5;
+  Chart order("Boids: order parameter |mean unit heading| (N = " + std::to_string(n) + ", R = 1.2)", "time [s]",
+              "order parameter");
+  order.yRange(0.0, 1.05);
+  for (const double wa : {8.0, 0.0}) {
+    const std::string title = wa > 0.0 ? "separation + alignment + cohesion" : "separation + cohesion only";
+    attempt("boids flock (" + title + ")", [&] {
+      ParticleSystem sys(VecX::Ones(n));
+      sys.addForce(std::make_shared<Boids>(1.2, 0.02, wa, 1.5));
+      sys.addForce(std::make_shared<Cruise>(1.0, 2.0));
+      VecX X = sys.makeState(x0, v0);
+      Integrator integrator(Method::SymplecticEuler);
+      Series series{title, {0.0}, {orderParameter(velocities(X))},
+                    wa > 0.0 ? "lines lw 2 lc rgb '#2266aa'" : "lines lw 2 lc rgb '#cc6633'"};
+      std::vector<Mat3X> shots{positions(X)}, headings{velocities(X)};
+      for (int f = 1; f <= frames; ++f) {
+        for (int k = 0; k < steps_per_frame; ++k) integrator.step(sys, X, h);
+        series.x.push_back(f * steps_per_frame * h);
+        series.y.push_back(orderParameter(velocities(X)));
+        shots.push_back(positions(X));
+        headings.push_back(velocities(X));
+      }
+      order.add(series);
+      if (wa == 0.0) return;
+      // The animation's box holds every frame; each boid is a dot with a short line along its heading.
+      Vec3 lo = shots[0].rowwise().minCoeff(), hi = shots[0].rowwise().maxCoeff();
+      for (const Mat3X& shot : shots) {
+        lo = lo.cwiseMin(shot.rowwise().minCoeff());
+        hi = hi.cwiseMax(shot.rowwise().maxCoeff());
+      }
+      Animation animation("Boids: separation, alignment, cohesion (symplectic Euler, h = 0.02)",
+                          lo - Vec3(0.3, 0.3, 0.0), hi + Vec3(0.3, 0.3, 0.0), false);
+      for (std::size_t f = 0; f < shots.size(); f += options.quick ? 2 : 1) {
+        Mat3X ticks(3, 3 * n);
+        for (Index i = 0; i < n; ++i) {
+          const double speed = headings[f].col(i).norm();
+          const Vec3 dir = speed > 0.0 ? Vec3(headings[f].col(i) / speed) : Vec3::Zero();
+          ticks.col(3 * i) = shots[f].col(i);
+          ticks.col(3 * i + 1) = shots[f].col(i) + 0.25 * dir;
+          ticks.col(3 * i + 2).setConstant(NAN);
+        }
+        animation.addFrame({{ticks, "lines lw 1 lc rgb '#2266aa'", ""}, {shots[f], "points pt 7 ps 0.8 lc rgb '#2266aa'", ""}},
+                           "t = " + fmt(static_cast<double>(f) * steps_per_frame * h, 3) + " s, order " +
+                               fmt(series.y[f], 2));
+      }
+      written.push_back(animation.save(options.out + "/lab01_flock.gif", 8));
+    });
+  }
+  for (const auto& p : order.save(options.out + "/lab01_flock_order")) written.push_back(p);
+}
+
+// Tracers in a curl-noise flow around a disc (radius 0.5 at the origin, ramp width 0.5): RK4
+// paths from a line of starting points upstream.
+void curlNoiseDemo(const DemoOptions& options, std::vector<std::string>& written) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<NoiseWave> waves;
+  for (int k = 0; k < 6; ++k) {
+    const double a = 2.0 * M_PI * unit(rng), size = 1.0 + 2.0 * unit(rng);
+    waves.push_back({0.05 + 0.1 * unit(rng), size * Eigen::Vector2d(std::cos(a), std::sin(a)), 2.0 * M_PI * unit(rng)});
+  }
+  // A uniform stream to the right on top of the noise: psi_0 += U y, as the long wave
+  // U sin(eps y) / eps would give for small eps.
+  waves.push_back({40.0, Eigen::Vector2d(0.0, 0.01), 0.0});
+  const CurlNoise field(waves, Vec3::Zero(), 0.5, 0.5, 1e-4);
+  Chart chart("Curl noise: RK4 tracer paths around a solid disc (h = 0.01)", "x [m]", "y [m]");
+  chart.equalAxes().xRange(-2.2, 2.2).yRange(-1.6, 1.6);
+  Series circle{"solid boundary", {}, {}, "lines lw 2 lc rgb '#cc3333'"};
+  for (int k = 0; k <= 200; ++k) {
+    circle.x.push_back(0.5 * std::cos(2.0 * M_PI * k / 200));
+    circle.y.push_back(0.5 * std::sin(2.0 * M_PI * k / 200));
+  }
+  double closest = 1e300;
+  attempt("curl-noise tracers", [&] {
+    Series paths{"tracer paths", {}, {}, "lines lw 1 lc rgb '#2266aa'"};
+    const int tracers = options.quick ? 15 : 31;
+    const double h = 0.01;
+    for (int k = 0; k < tracers; ++k) {
+      Vec3 p(-2.0, -1.5 + 3.0 * k / (tracers - 1), 0.0);
+      for (int step = 0; step < 1500 && std::abs(p.x()) < 2.2; ++step) {
+        paths.x.push_back(p.x());
+        paths.y.push_back(p.y());
+        const Vec3 k1 = curlNoiseVelocity(field, p);
+        const Vec3 k2 = curlNoiseVelocity(field, p + 0.5 * h * k1);
+        const Vec3 k3 = curlNoiseVelocity(field, p + 0.5 * h * k2);
+        const Vec3 k4 = curlNoiseVelocity(field, p + h * k3);
+        p += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        closest = std::min(closest, field.distance(p));
+      }
+      paths.x.push_back(NAN);
+      paths.y.push_back(NAN);
+    }
+    chart.add(paths).add(circle);  // the disc alone, without paths, would show nothing of the student's code
+    std::cout << "curl noise: closest approach of any tracer to the disc: " << fmt(closest) << " m\n";
+  });
+  for (const auto& p : chart.save(options.out + "/lab01_curl_noise")) written.push_back(p);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -220,6 +353,8 @@ int main(int argc, char** argv) {
     workPrecision(options, written);
     stabilityChart(options, written);
     nbodyAnimation(options, written);
+    flockDemo(options, written);
+    curlNoiseDemo(options, written);
 
     reportDemo("Lab 1", written, table, options.out + "/lab01_summary.md");
     return 0;

@@ -1,8 +1,10 @@
-// Lab 1 scenes for the 3-D viewer (./physlab view 01): particles under N-body gravity.
+// Lab 1 scenes for the 3-D viewer (./physlab view 01): particles under N-body gravity, and a flock.
 #include <cmath>
 #include <memory>
+#include <random>
 
 #include "physlab/integrators.hpp"
+#include "physlab/neighbours.hpp"
 #include "physlab/particles.hpp"
 #include "physlab/replay.hpp"
 #include "physlab/view.hpp"
@@ -43,8 +45,38 @@ Replay orbits() {
   return replay;
 }
 
+// 150 boids (section 6) in a 3 m cube at z in [0, 3], headings within 60 degrees of +x at 1 m/s;
+// R = 1.2, w_s = 0.02, w_a = 2, w_c = 1.5; symplectic Euler, h = 0.02, 8 s, 25 frames a second.
+// Boids do not propel themselves, so the flock keeps roughly its initial mean velocity.
+Replay flock() {
+  const Index n = 150;
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> coordinate(-1.5, 1.5), angle(-M_PI / 3.0, M_PI / 3.0);
+  Mat3X x(3, n), v(3, n);
+  for (Index i = 0; i < n; ++i) {
+    x.col(i) << coordinate(rng), coordinate(rng), 1.5 + coordinate(rng);
+    const double a = angle(rng), b = 0.5 * angle(rng);
+    v.col(i) << std::cos(a) * std::cos(b), std::sin(a) * std::cos(b), std::sin(b);
+  }
+  ParticleSystem sys(VecX::Ones(n));
+  sys.addForce(std::make_shared<Boids>(1.2, 0.02, 2.0, 1.5));
+  VecX X = sys.makeState(x, v);
+  Replay replay;
+  replay.title = "Lab 1: a flock of 150 boids";
+  replay.settings = "symplectic Euler, h = 0.02, R = 1.2, w_s = 0.02, w_a = 2, w_c = 1.5";
+  replay.particle_count = static_cast<std::uint32_t>(n);
+  Integrator integrator(Method::SymplecticEuler);
+  const double h = 0.02;
+  for (int k = 0; k <= 400; ++k) {
+    if (k > 0) integrator.step(sys, X, h);
+    if (k % 2 == 0) recordParticles(replay, k * h, positions(X), kineticEnergy(sys, X), potentialEnergy(sys, X));
+  }
+  return replay;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  return runView(argc, argv, {{"orbits", "three planets round a sun (N-body gravity, velocity Verlet)", orbits}});
+  return runView(argc, argv, {{"orbits", "three planets round a sun (N-body gravity, velocity Verlet)", orbits},
+                              {"flock", "150 boids aligning (section 6, symplectic Euler)", flock}});
 }
