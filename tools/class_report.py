@@ -97,11 +97,11 @@ def histogram_svg(stage: str, percents: list) -> str:
         data, chart = Path(tmp) / "bins.dat", Path(tmp) / "chart.svg"
         data.write_text("".join(f"{(i + 0.5) * 100 / BINS:g} {c}\n" for i, c in enumerate(counts)))
         script = "\n".join([
-            "set terminal svg size 460,260 dynamic font 'sans,11' background '#ffffff'",
+            "set terminal svg size 460,260 fixed font 'sans,11' background '#ffffff'",
             f"set output '{chart}'",
             f"set title 'Lab {stage[:2]}: submissions per score band'",
             "set xlabel 'score (% of the lab points)'", "set ylabel 'submissions'",
-            "set xrange [0:100]", "set xtics 0,10,100", "set yrange [0:*]", "set ytics 1",
+            "set xrange [0:100]", "set xtics 0,10,100", "set yrange [0:*]", "set ytics 1" if max(counts) <= 10 else "set ytics",
             "set boxwidth 9", "set style fill solid 0.8 border rgb '#1f4e79'", "set grid ytics",
             "unset key",
             f"plot '{data}' using 1:2 with boxes lc rgb '#4a90c2'", ""])

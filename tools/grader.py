@@ -29,6 +29,7 @@ import sys
 import tempfile
 import threading
 import time
+import tomllib
 import xml.etree.ElementTree as ET
 import zipfile
 from dataclasses import dataclass, field
@@ -369,6 +370,7 @@ def fit(blocks: list, limit: int) -> list:
 
 
 CAPTURED_RE = re.compile(r"^(\w+) := (.*)$")
+COMPARISON_RE = re.compile(r" (==|!=|<=|>=|<|>) ")
 
 
 def describe_failure(output: str) -> tuple:
@@ -404,6 +406,10 @@ def describe_failure(output: str) -> tuple:
         m = CAPTURED_RE.match(note)
         if m:
             captured[m.group(1)] = clean(m.group(2))[:80]
+    actual = next((d[len("actual: "):] for d in (found[0][2] if found else []) if d.startswith("actual: ")), "")
+    sides = COMPARISON_RE.split(actual, maxsplit=1)
+    if len(sides) == 3:  # the first failed comparison's two sides, as the test wrote them
+        captured["lhs"], captured["rhs"] = clean(sides[0].strip())[:80], clean(sides[2].strip())[:80]
     return status, "\n".join(fit(blocks, FAILURE_LINES)), checks, captured
 
 
@@ -730,6 +736,80 @@ def handout_hint(case: TestCase) -> str:
     return f"handout: {path}, {where}; your code: {files}"
 
 
+# ---- hints: what broke, in the physics' words, never a hidden test's expected value -------------
+
+HINT_FIELD_RE = re.compile(r"\{(\w*)\}")
+HINT_NUMBER_RE = re.compile(r"\d")
+
+
+@functools.lru_cache(maxsize=None)
+def hint_table(stage: str, hidden: bool) -> dict:
+    """test name -> (text, measured) from tests/NN_name/hints.toml (visible tests) or
+    tests/hidden/NN_name/hints.toml (hidden tests): a hint is a string, or a table with `text` and
+    `measured`, a sentence with {fields} filled from the failure (lhs and rhs, the two sides of the
+    first failed comparison; a name the test CAPTUREs), shown only when every field was found."""
+    path = ROOT / "tests" / ("hidden" if hidden else "") / stage / "hints.toml"
+    if not path.exists():
+        return {}
+    table = {}
+    for name, entry in tomllib.loads(path.read_text(encoding="utf-8")).items():
+        if isinstance(entry, str):
+            table[name] = (entry, "")
+        elif isinstance(entry, dict):
+            table[name] = (str(entry.get("text", "")), str(entry.get("measured", "")))
+    return table
+
+
+def hint_problems(stages: list) -> list:
+    """Hints that name no test of their lab's file, and hidden tests' hints that could give a value
+    away: a number of their own, or the expected side {rhs} of a comparison."""
+    problems = []
+    for stage in stages:
+        for hidden in (False, True):
+            where = f"tests/{'hidden/' if hidden else ''}{stage}/hints.toml"
+            path = ROOT / where
+            if not path.exists():
+                continue
+            try:
+                raw = tomllib.loads(path.read_text(encoding="utf-8"))
+            except tomllib.TOMLDecodeError as error:
+                problems.append(f"{where}: not valid TOML: {error}")
+                continue
+            names = {t.name for t in course_file.tree_tests(ROOT, stage) if ("hidden" in t.tags) == hidden}
+            for name, entry in raw.items():
+                if name not in names:
+                    problems.append(f"{where}: no {'hidden' if hidden else 'visible'} graded test named {name!r}")
+                if not isinstance(entry, (str, dict)) or (isinstance(entry, dict) and (
+                        set(entry) - {"text", "measured"} or not isinstance(entry.get("text", ""), str)
+                        or not isinstance(entry.get("measured", ""), str))):
+                    problems.append(f"{where}: {name!r}: a hint is text or a table of text and measured")
+                    continue
+                text, measured = hint_table(stage, hidden).get(name, ("", ""))
+                if not text:
+                    problems.append(f"{where}: {name!r}: the hint has no text")
+                if hidden and HINT_NUMBER_RE.search(HINT_FIELD_RE.sub("", text + measured)):
+                    problems.append(f"{where}: {name!r}: a hidden test's hint may hold no number of its "
+                                    f"own (it could be the expected value); measured values come from fields")
+                if hidden and "{rhs}" in measured:
+                    problems.append(f"{where}: {name!r}: {{rhs}} is a hidden test's expected side")
+                if "" in HINT_FIELD_RE.findall(text + measured):
+                    problems.append(f"{where}: {name!r}: an empty {{}} field")
+    return problems
+
+
+def hint_of(case: TestCase) -> str:
+    """The hint of a failed test (the test ran and broke: not unwritten, not uncompiled), or ''."""
+    if case.passed or case.status in ("not implemented", "not compiled", "not run"):
+        return ""
+    text, measured = hint_table(case.stage, "hidden" in case.tags).get(case.name, ("", ""))
+    if not text:
+        return ""
+    fields = HINT_FIELD_RE.findall(measured)
+    if measured and all(f in case.captured for f in fields):
+        text += " " + HINT_FIELD_RE.sub(lambda m: case.captured[m.group(1)], measured)
+    return clean(f"hint: {text}")
+
+
 WAITS_RE = re.compile(r"not implemented: (\S+) \(see Lab (\d+) handout, sections? (\d+)")
 
 
@@ -775,6 +855,9 @@ def report(results: list, seed: int, title: str) -> str:
                 if waiting:
                     out.append("            " + waiting)
                 out += ["            " + l for l in t.output.splitlines()[:12]]
+                hint = hint_of(t)
+                if hint:
+                    out += indented("            ", hint)
                 # A stub's message names its section already; a wrong answer gets the pointer here
                 if t.status != "not implemented" and not t.hidden:
                     out.append("            " + handout_hint(t))
@@ -793,7 +876,8 @@ def gradescope_json(results: list, elapsed: float) -> dict:
                 "score": t.points if t.passed else 0.0,
                 "max_score": t.points,
                 "status": "passed" if t.passed else "failed",
-                "output": clean(t.status if t.passed else f"{t.status}\n{t.output}")[:OUTPUT_LIMIT],
+                "output": clean(t.status if t.passed else "\n".join(
+                    [t.status] + ([hint_of(t)] if hint_of(t) else []) + [t.output]))[:OUTPUT_LIMIT],
                 "visibility": "after_published" if t.hidden else "visible",
                 "tags": t.tags,
             })
@@ -904,7 +988,8 @@ def cmd_run(args) -> int:
         shutil.rmtree(scratch, ignore_errors=True)
     title = f"PhysLab tests against {args.variant}/"
     text = report(results, args.seed, title)
-    mistagged = tag_problems(results) if args.variant == "solutions" else []
+    mistagged = [f"TAG: {p}" for p in tag_problems(results)] + [f"HINT: {p}" for p in hint_problems(stages)] \
+        if args.variant == "solutions" else []
     if args.out:
         write_outputs(Path(args.out), text, gradescope_json(results, time.monotonic() - start))
     if args.expect == "fail":
@@ -914,7 +999,7 @@ def cmd_run(args) -> int:
         passed, failed = summary_line(results)
         print(f"\n{passed} passed, {failed} failed")
     for problem in mistagged:
-        print(f"  TAG: {problem}")
+        print(f"  {problem}")
     failed += len(mistagged)
     if args.summary:
         graded = [t for r in results for t in r.tests if t.graded]
