@@ -739,7 +739,7 @@ def handout_hint(case: TestCase) -> str:
 # ---- hints: what broke, in the physics' words, never a hidden test's expected value -------------
 
 HINT_FIELD_RE = re.compile(r"\{(\w*)\}")
-HINT_NUMBER_RE = re.compile(r"\d")
+HINT_NUMBER_RE = re.compile(r"(?<![A-Za-z_])\d")  # a number, not a digit of a name (RK4)
 
 
 @functools.lru_cache(maxsize=None)

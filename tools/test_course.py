@@ -212,5 +212,67 @@ class Publish(Tree):
         self.assertEqual((self.root / "CMakeLists.txt").read_text(), "physlab_add_lab(01_alpha)\n")
 
 
+class Hints(Tree):
+    """The hint tables: shown for a test that broke, measured values only when found, and no
+    hidden test's hint that could give its expected value away."""
+
+    def setUp(self):
+        super().setUp()
+        self.saved = grader.ROOT
+        grader.ROOT = self.root
+        grader.hint_table.cache_clear()
+        (self.root / "tests" / "01_alpha" / "hints.toml").write_text(
+            '"gravity pulls down" = "gravity is m g on every free particle"\n'
+            '["springs pull back"]\ntext = "the force points along the spring"\n'
+            'measured = "Your force was {lhs} at k = {k}."\n')
+
+    def tearDown(self):
+        grader.ROOT = self.saved
+        grader.hint_table.cache_clear()
+        super().tearDown()
+
+    def case(self, name: str, status: str, captured: dict) -> grader.TestCase:
+        return grader.TestCase("01_alpha", name, ["lab01", "pts=2", "sec=1"], status=status, captured=captured)
+
+    def test_shown_when_the_test_broke(self):
+        self.assertEqual(grader.hint_of(self.case("gravity pulls down", "failed", {})),
+                         "hint: gravity is m g on every free particle")
+        self.assertEqual(grader.hint_of(self.case("gravity pulls down", "timed out", {})),
+                         "hint: gravity is m g on every free particle")
+        for status in ("passed", "not implemented", "not compiled", "not run"):
+            self.assertEqual(grader.hint_of(self.case("gravity pulls down", status, {})), "", status)
+
+    def test_measured_only_with_every_field(self):
+        whole = self.case("springs pull back", "failed", {"lhs": "-3.5", "rhs": "3.5", "k": "10"})
+        self.assertEqual(grader.hint_of(whole), "hint: the force points along the spring "
+                                                "Your force was -3.5 at k = 10.")
+        part = self.case("springs pull back", "failed", {"lhs": "-3.5"})
+        self.assertEqual(grader.hint_of(part), "hint: the force points along the spring")
+
+    def test_the_failure_gives_the_fields(self):
+        output = ('<Catch><Group><TestCase><Info>k := 10</Info><Expression success="false" type="CHECK" '
+                  'filename="t.cpp" line="7"><Original>f == Approx(3.5)</Original><Expanded>-3.5 == '
+                  'Approx( 3.5 )</Expanded></Expression></TestCase></Group></Catch>')
+        status, _, checks, captured = grader.describe_failure(output)
+        self.assertEqual((status, checks), ("failed", ["t.cpp:7: f == Approx(3.5)"]))
+        self.assertEqual(captured, {"k": "10", "lhs": "-3.5", "rhs": "Approx( 3.5 )"})
+
+    def test_problems(self):
+        self.assertEqual(grader.hint_problems(["01_alpha"]), [])
+        (self.root / "tests" / "hidden" / "01_alpha" / "hints.toml").write_text(
+            '"hidden: drag slows" = "drag is 0.5 v"\n'
+            '"springs pull back" = "a visible test in the hidden table"\n'
+            '["hidden: drag slows x"]\ntext = "t"\nmeasured = "expected {rhs}"\n')
+        problems = "\n".join(grader.hint_problems(["01_alpha"]))
+        self.assertIn("'hidden: drag slows': a hidden test's hint may hold no number", problems)
+        self.assertIn("no hidden graded test named 'springs pull back'", problems)
+        self.assertIn("{rhs} is a hidden test's expected side", problems)
+
+    def test_the_trees_tables(self):
+        grader.ROOT = self.saved
+        grader.hint_table.cache_clear()
+        self.assertEqual(grader.hint_problems(grader.discover_stages(self.saved)), [])
+
+
 if __name__ == "__main__":
     unittest.main()
