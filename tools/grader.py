@@ -373,6 +373,14 @@ CAPTURED_RE = re.compile(r"^(\w+) := (.*)$")
 COMPARISON_RE = re.compile(r" (==|!=|<=|>=|<|>) ")
 
 
+def short_number(text: str) -> str:
+    """A number to four significant digits (what a hint needs), any other text as it is."""
+    try:
+        return f"{float(text):.4g}"
+    except ValueError:
+        return text
+
+
 def describe_failure(output: str) -> tuple:
     """(status, explanation, failed checks, captured values) from the Catch2 XML report inside a
     test's output: each distinct failed check once (a check in a loop says how many times it
@@ -407,9 +415,9 @@ def describe_failure(output: str) -> tuple:
         if m:
             captured[m.group(1)] = clean(m.group(2))[:80]
     actual = next((d[len("actual: "):] for d in (found[0][2] if found else []) if d.startswith("actual: ")), "")
-    sides = COMPARISON_RE.split(actual, maxsplit=1)
+    sides = COMPARISON_RE.split(re.sub(r"\s+", " ", actual), maxsplit=1)  # Catch2 may wrap long sides
     if len(sides) == 3:  # the first failed comparison's two sides, as the test wrote them
-        captured["lhs"], captured["rhs"] = clean(sides[0].strip())[:80], clean(sides[2].strip())[:80]
+        captured["lhs"], captured["rhs"] = (short_number(clean(side.strip()))[:80] for side in sides[::2])
     return status, "\n".join(fit(blocks, FAILURE_LINES)), checks, captured
 
 

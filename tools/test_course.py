@@ -256,6 +256,8 @@ class Hints(Tree):
         status, _, checks, captured = grader.describe_failure(output)
         self.assertEqual((status, checks), ("failed", ["t.cpp:7: f == Approx(3.5)"]))
         self.assertEqual(captured, {"k": "10", "lhs": "-3.5", "rhs": "Approx( 3.5 )"})
+        wrapped = output.replace("-3.5 == Approx( 3.5 )", "-3.50000012\n==\nApprox( 3.5 )")
+        self.assertEqual(grader.describe_failure(wrapped)[3]["lhs"], "-3.5")
 
     def test_problems(self):
         self.assertEqual(grader.hint_problems(["01_alpha"]), [])
