@@ -134,7 +134,7 @@ def page(rows: dict, scores: dict, graded: dict, course) -> str:
              "<h2>Scores per lab</h2><table><tr><th>lab</th><th>points</th><th>mean</th><th>median</th>"
              "<th>lowest</th><th>highest</th></tr>"]
     for stage, (percents, possible) in scores.items():
-        parts.append(f"<tr><td>{esc(stage)}</td><td class='n'>{possible:g}</td>"
+        parts.append(f"<tr><td>{esc(stage)}</td><td class='n'>{round(possible, 2):g}</td>"
                      + "".join(f"<td class='n'>{v:.0f} %</td>" for v in
                                (statistics.mean(percents), statistics.median(percents), min(percents),
                                 max(percents))) + "</tr>")
