@@ -203,6 +203,15 @@ class Publish(Tree):
                          "| 2 | beta | \\ref lab02_beta |\nsee Lab 1's handout (not part of this course).\n")
         points = json.loads((self.root / course.POINTS_FILE).read_text())
         self.assertEqual(points, {"02_beta": {"it solves": 2.0, "it solves fast": 3.0}})
+        # the copy's ./physlab test (and so its Classroom workflow) grades at the course's points
+        saved, grader.ROOT = grader.ROOT, self.root
+        try:
+            cases = [grader.TestCase("02_beta", "it solves fast", ["lab02", "pts=6", "sec=1"]),
+                     grader.TestCase("02_beta", "not in the course", ["lab02", "pts=1", "sec=1"])]
+            self.assertEqual([(c.name, c.points) for c in grader.course_points("02_beta", cases)],
+                             [("it solves fast", 3.0)])
+        finally:
+            grader.ROOT = saved
 
     def test_a_lab_nothing_builds_on_leaves_cmake(self):
         (self.root / "CMakeLists.txt").write_text("physlab_add_lab(01_alpha)\n"
