@@ -235,6 +235,13 @@ function(physlab_add_lab stage)
   add_library(physlab_${stage}_ref STATIC ${framework_objects})
   physlab_add_units(physlab_${stage}_ref physlab_${stage}_ref "${ref_units}")
   target_link_libraries(physlab_${stage}_ref PUBLIC physlab_common ${deps})
+  set_property(GLOBAL APPEND PROPERTY PHYSLAB_STAGES ${stage})
+  # A lab left out of a course's student copy that a lab of the course builds on (./physlab
+  # publish --course): its released reference only, no tests, demo, scene or benchmark.
+  file(GLOB tests CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/${stage}/*.cpp")
+  if(NOT tests AND NOT lab_sources)
+    return()
+  endif()
 
   # Partial credit: a test grades the functions of its handout sections ([sec=N] tags), so with
   # the reference at hand each student file also gets a library of its own beside the reference of
@@ -259,7 +266,6 @@ function(physlab_add_lab stage)
 
   # Graded tests: compiled once, linked against each implementation. Hidden tests get their own
   # executables, so that their text is never in a process that runs the visible tests.
-  file(GLOB tests CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/${stage}/*.cpp")
   physlab_add_tests(${stage} physlab_${stage}_tests test_${stage} "${tests}" "${mixes}")
   catch_discover_tests(test_${stage} TEST_PREFIX "${stage}: " PROPERTIES TIMEOUT 120 LABELS solutions)
   if(TARGET test_${stage}_labs)
@@ -323,5 +329,4 @@ function(physlab_add_lab stage)
     set(PHYSLAB_BENCH_TARGET bench_${stage})
     include("${PHYSLAB_ROOT}/cmake/peers/${stage}.cmake" OPTIONAL)
   endif()
-  set_property(GLOBAL APPEND PROPERTY PHYSLAB_STAGES ${stage})
 endfunction()

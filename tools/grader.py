@@ -13,6 +13,7 @@ import argparse
 import concurrent.futures
 import ctypes
 import functools
+import grp
 import hashlib
 import hmac
 import json
@@ -28,10 +29,14 @@ import sys
 import tempfile
 import threading
 import time
+import tomllib
 import xml.etree.ElementTree as ET
 import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import course as course_file  # noqa: E402  (tools/course.py, beside this file)
 
 ROOT = Path(__file__).resolve().parent.parent
 STAGE_RE = re.compile(r"^(\d\d)_[a-z0-9_]+$")
@@ -43,6 +48,7 @@ COMPILE_MEMORY = 4 << 30     # address space of the compiler on one lab file
 COMPILE_OUTPUT = 256 << 20   # bytes of one object file (ours are under 2 MB)
 SANDBOX_PROCESSES = 64       # processes a sandbox user may have at once
 SANDBOX_USER = "physlab-sandbox-{}"
+SANDBOX_GROUP = "physlab-class-{}"  # one per submission graded at the same time (Sandbox)
 SHARED_LIBRARIES = ("libstdc++.so.6", "libm.so.6", "libc.so.6", "libgcc_s.so.1")
 # Sections a compiled lab file may contain. Anything else (.preinit_array, prioritised
 # .init_array.NNNNN, .ctors, .init, linker directives) could run code before the harness or change
@@ -151,9 +157,15 @@ class TestCase:
     status: str = "not run"  # passed | failed | not implemented | timed out | crashed | not compiled
     output: str = ""
     seconds: float = 0.0
+    checks: list = field(default_factory=list)  # the failed checks, "file:line: expression"
+    captured: dict = field(default_factory=dict)  # CAPTURE'd values of the first failure
+    course_points: float = None  # the points a course file gives it (None: its tag's)
+    course_hidden: bool = False  # hidden by the course file
 
     @property
     def points(self) -> float:
+        if self.course_points is not None:
+            return self.course_points
         for tag in self.tags:
             m = re.fullmatch(r"pts=(\d+(?:\.\d+)?)", tag)
             if m:
@@ -166,7 +178,7 @@ class TestCase:
 
     @property
     def hidden(self) -> bool:
-        return "hidden" in self.tags
+        return "hidden" in self.tags or self.course_hidden
 
     @property
     def sections(self) -> list:
@@ -357,18 +369,32 @@ def fit(blocks: list, limit: int) -> list:
     return lines
 
 
+CAPTURED_RE = re.compile(r"^(\w+) := (.*)$")
+COMPARISON_RE = re.compile(r" (==|!=|<=|>=|<|>) ")
+
+
+def short_number(text: str) -> str:
+    """A number to four significant digits (what a hint needs), any other text as it is."""
+    try:
+        return f"{float(text):.4g}"
+    except ValueError:
+        return text
+
+
 def describe_failure(output: str) -> tuple:
-    """(status, explanation) from the Catch2 XML report inside a test's output: each distinct failed
-    check once (a check in a loop says how many times it failed, and shows its first failure), what
-    happened, then the messages in scope, within FAILURE_LINES lines. The output is the student's as
+    """(status, explanation, failed checks, captured values) from the Catch2 XML report inside a
+    test's output: each distinct failed check once (a check in a loop says how many times it
+    failed, and shows its first failure), what happened, then the messages in scope, within
+    FAILURE_LINES lines; the checks as "file:line: expression" for the class page, and the values
+    CAPTURE()d at the first failure (name -> text) for the hints. The output is the student's as
     much as the harness's: it only explains, it never decides a pass."""
     start, end = output.find("<Catch"), output.rfind("</Catch>")
     if start < 0 or end < 0:
-        return "failed", ""
+        return "failed", "", [], {}
     try:
         tree = ET.fromstring(output[start:end + len("</Catch>")])
     except ET.ParseError:
-        return "failed", ""
+        return "failed", "", [], {}
     found = []
     failures_in(tree, found)
     counts, firsts = {}, {}
@@ -382,7 +408,17 @@ def describe_failure(output: str) -> tuple:
                       + [line for n in notes for line in indented("  note: ", n)])
     text = [line for block in blocks for line in block]
     status = "not implemented" if any("not implemented" in line for line in text) else "failed"
-    return status, "\n".join(fit(blocks, FAILURE_LINES))
+    checks = [clean(f"{place}: {expression}") for place, expression in firsts]
+    captured = {}
+    for note in (found[0][3] if found else []):
+        m = CAPTURED_RE.match(note)
+        if m:
+            captured[m.group(1)] = clean(m.group(2))[:80]
+    actual = next((d[len("actual: "):] for d in (found[0][2] if found else []) if d.startswith("actual: ")), "")
+    sides = COMPARISON_RE.split(re.sub(r"\s+", " ", actual), maxsplit=1)  # Catch2 may wrap long sides
+    if len(sides) == 3:  # the first failed comparison's two sides, as the test wrote them
+        captured["lhs"], captured["rhs"] = (short_number(clean(side.strip()))[:80] for side in sides[::2])
+    return status, "\n".join(fit(blocks, FAILURE_LINES)), checks, captured
 
 
 # ---- running untrusted processes ---------------------------------------------------------------
@@ -390,18 +426,28 @@ def describe_failure(output: str) -> tuple:
 class Sandbox:
     """Where and as whom student code runs. As root: one unprivileged user per parallel worker, so
     that killing every process of that user ends whatever a test left behind. Otherwise: the
-    current user, with process groups and the grader as subreaper for orphans."""
+    current user, with process groups and the grader as subreaper for orphans.
 
-    def __init__(self, jobs: int, switch_user: bool):
+    Several submissions graded at once each have a Sandbox of their own with slots (users) no other
+    one has (`first`), and as root a group of their own (`group`): only its users may enter that
+    submission's sandbox folder, so no other submission's code can read its hidden tests."""
+
+    # Processes started by any Sandbox and not yet reaped by their thread: a sweep leaves them
+    # alone, whichever Sandbox (submission) runs them.
+    lock = threading.Lock()
+    live = set()
+
+    def __init__(self, jobs: int, switch_user: bool, first: int = 0, group: str = ""):
         self.root = switch_user and os.geteuid() == 0
-        self.slots = list(range(max(1, jobs)))
+        self.slots = list(range(first, first + max(1, jobs)))
         self.free = list(self.slots)
-        self.lock = threading.Lock()
-        self.cond = threading.Condition(self.lock)
-        self.live = set()  # pids of processes started and not yet reaped by their thread
+        self.cond = threading.Condition()
+        self.gid = None
         if self.root:
             for slot in self.slots:
                 ensure_user(SANDBOX_USER.format(slot))
+            if group:
+                self.gid = ensure_group(group)
         try:  # orphans of a killed test become our children, so the sweep can find them
             ctypes.CDLL(None, use_errno=True).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
         except (OSError, AttributeError):
@@ -435,7 +481,8 @@ class Sandbox:
         with self.lock:
             proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, start_new_session=True,
                                     user=ids[0] if ids else None, group=ids[1] if ids else None,
-                                    extra_groups=[] if ids else None, **options)
+                                    extra_groups=([self.gid] if self.gid is not None else []) if ids else None,
+                                    **options)
             self.live.add(proc.pid)
         return proc
 
@@ -473,11 +520,14 @@ class Sandbox:
         self.sweep()
 
     def sweep(self) -> None:
-        """Kills and reaps our children that no running test owns: orphans of ended tests."""
+        """Kills and reaps our children that no running test owns: orphans of ended tests. As root
+        student code runs only as the sandbox users, so the grader's own tools (the linker, nm),
+        which run as root, are left alone: another submission graded at once may be using them."""
         me = os.getpid()
         for _ in range(50):
             with self.lock:
-                orphans = [p for p in children_of(me) if p not in self.live]
+                orphans = [p for p, ppid, uid in proc_stats() if ppid == me and p not in self.live
+                           and not (self.root and uid == 0)]
             if not orphans:
                 return
             for pid in orphans:
@@ -493,6 +543,15 @@ class Sandbox:
             self.end(slot)
             if self.root:
                 remove_files_of(self.ids(slot)[0])
+
+
+def ensure_group(name: str) -> int:
+    """The id of the system group `name`, created on first use."""
+    try:
+        return grp.getgrnam(name).gr_gid
+    except KeyError:
+        subprocess.run(["groupadd", "--system", name], check=True, capture_output=True)
+        return grp.getgrnam(name).gr_gid
 
 
 def ensure_user(name: str) -> None:
@@ -522,10 +581,6 @@ def proc_stats():
             yield int(entry.name), ppid, entry.stat().st_uid
         except (OSError, IndexError, ValueError):
             continue
-
-
-def children_of(pid: int) -> list:
-    return [p for p, ppid, _ in proc_stats() if ppid == pid]
 
 
 def count_processes(uid: int) -> int:
@@ -623,7 +678,7 @@ def judge(case: TestCase, code, budget: float, key: str, verdicts: str, output: 
         if len(parts) == 4 and parts[0] == "physlab-verdict" and hmac.compare_digest(parts[1], key) \
                 and parts[2] in ("exit", "signal") and parts[3].isdigit():
             verdict = (parts[2], int(parts[3]))
-    status, detail = describe_failure(output)
+    status, detail, case.checks, case.captured = describe_failure(output)
     if code is None:
         case.status = "timed out"
         case.output = f"killed after {budget:.3g} s" + (f"\n{detail}" if detail else "")
@@ -689,6 +744,80 @@ def handout_hint(case: TestCase) -> str:
     return f"handout: {path}, {where}; your code: {files}"
 
 
+# ---- hints: what broke, in the physics' words, never a hidden test's expected value -------------
+
+HINT_FIELD_RE = re.compile(r"\{(\w*)\}")
+HINT_NUMBER_RE = re.compile(r"(?<![A-Za-z_])\d")  # a number, not a digit of a name (RK4)
+
+
+@functools.lru_cache(maxsize=None)
+def hint_table(stage: str, hidden: bool) -> dict:
+    """test name -> (text, measured) from tests/NN_name/hints.toml (visible tests) or
+    tests/hidden/NN_name/hints.toml (hidden tests): a hint is a string, or a table with `text` and
+    `measured`, a sentence with {fields} filled from the failure (lhs and rhs, the two sides of the
+    first failed comparison; a name the test CAPTUREs), shown only when every field was found."""
+    path = ROOT / "tests" / ("hidden" if hidden else "") / stage / "hints.toml"
+    if not path.exists():
+        return {}
+    table = {}
+    for name, entry in tomllib.loads(path.read_text(encoding="utf-8")).items():
+        if isinstance(entry, str):
+            table[name] = (entry, "")
+        elif isinstance(entry, dict):
+            table[name] = (str(entry.get("text", "")), str(entry.get("measured", "")))
+    return table
+
+
+def hint_problems(stages: list) -> list:
+    """Hints that name no test of their lab's file, and hidden tests' hints that could give a value
+    away: a number of their own, or the expected side {rhs} of a comparison."""
+    problems = []
+    for stage in stages:
+        for hidden in (False, True):
+            where = f"tests/{'hidden/' if hidden else ''}{stage}/hints.toml"
+            path = ROOT / where
+            if not path.exists():
+                continue
+            try:
+                raw = tomllib.loads(path.read_text(encoding="utf-8"))
+            except tomllib.TOMLDecodeError as error:
+                problems.append(f"{where}: not valid TOML: {error}")
+                continue
+            names = {t.name for t in course_file.tree_tests(ROOT, stage) if ("hidden" in t.tags) == hidden}
+            for name, entry in raw.items():
+                if name not in names:
+                    problems.append(f"{where}: no {'hidden' if hidden else 'visible'} graded test named {name!r}")
+                if not isinstance(entry, (str, dict)) or (isinstance(entry, dict) and (
+                        set(entry) - {"text", "measured"} or not isinstance(entry.get("text", ""), str)
+                        or not isinstance(entry.get("measured", ""), str))):
+                    problems.append(f"{where}: {name!r}: a hint is text or a table of text and measured")
+                    continue
+                text, measured = hint_table(stage, hidden).get(name, ("", ""))
+                if not text:
+                    problems.append(f"{where}: {name!r}: the hint has no text")
+                if hidden and HINT_NUMBER_RE.search(HINT_FIELD_RE.sub("", text + measured)):
+                    problems.append(f"{where}: {name!r}: a hidden test's hint may hold no number of its "
+                                    f"own (it could be the expected value); measured values come from fields")
+                if hidden and "{rhs}" in measured:
+                    problems.append(f"{where}: {name!r}: {{rhs}} is a hidden test's expected side")
+                if "" in HINT_FIELD_RE.findall(text + measured):
+                    problems.append(f"{where}: {name!r}: an empty {{}} field")
+    return problems
+
+
+def hint_of(case: TestCase) -> str:
+    """The hint of a failed test (the test ran and broke: not unwritten, not uncompiled), or ''."""
+    if case.passed or case.status in ("not implemented", "not compiled", "not run"):
+        return ""
+    text, measured = hint_table(case.stage, "hidden" in case.tags).get(case.name, ("", ""))
+    if not text:
+        return ""
+    fields = HINT_FIELD_RE.findall(measured)
+    if measured and all(f in case.captured for f in fields):
+        text += " " + HINT_FIELD_RE.sub(lambda m: case.captured[m.group(1)], measured)
+    return clean(f"hint: {text}")
+
+
 WAITS_RE = re.compile(r"not implemented: (\S+) \(see Lab (\d+) handout, sections? (\d+)")
 
 
@@ -736,6 +865,9 @@ def report(results: list, seed: int, title: str) -> str:
                 if waiting:
                     out.append("            " + waiting)
                 out += ["            " + l for l in t.output.splitlines()[:12]]
+                hint = hint_of(t)
+                if hint:
+                    out += indented("            ", hint)
                 # A stub's message names its section already; a wrong answer gets the pointer here
                 if t.status != "not implemented" and not t.hidden:
                     out.append("            " + handout_hint(t))
@@ -754,7 +886,8 @@ def gradescope_json(results: list, elapsed: float) -> dict:
                 "score": t.points if t.passed else 0.0,
                 "max_score": t.points,
                 "status": "passed" if t.passed else "failed",
-                "output": clean(t.status if t.passed else f"{t.status}\n{t.output}")[:OUTPUT_LIMIT],
+                "output": clean(t.status if t.passed else "\n".join(
+                    [t.status] + ([hint_of(t)] if hint_of(t) else []) + [t.output]))[:OUTPUT_LIMIT],
                 "visibility": "after_published" if t.hidden else "visible",
                 "tags": t.tags,
             })
@@ -769,7 +902,7 @@ def gradescope_json(results: list, elapsed: float) -> dict:
 
 
 def write_atomically(path: Path, text: str) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{threading.get_ident()}.tmp")
     with open(tmp, "w", encoding="utf-8") as f:
         f.write(text)
         f.flush()
@@ -814,12 +947,28 @@ def own_file_executable(exe: Path, case: TestCase) -> Path:
     return mixed if exe.name.endswith("_labs") and case.unit and mixed.exists() else exe
 
 
+def course_points(stage: str, cases: list) -> list:
+    """In a student copy published for a course (tools/course-points.json): the course's tests of
+    the lab at the course's points; elsewhere the cases as they are."""
+    table = ROOT / course_file.POINTS_FILE
+    if not table.exists():
+        return cases
+    points = json.loads(table.read_text(encoding="utf-8")).get(stage, {})
+    kept = [c for c in cases if c.name in points or not c.graded]
+    for case in kept:
+        if case.name in points:
+            case.course_points = float(points[case.name])
+    return kept
+
+
 def cmd_run(args) -> int:
     """Run already built tests; print the report; optionally write results.json."""
     start = time.monotonic()
     build = Path(args.build).resolve()
     stages = select_stages(discover_stages(ROOT), args.labs)
     sandbox = Sandbox(args.jobs, switch_user=False)  # the tree's own code: run it as we are
+    if args.timeout is None:
+        args.timeout = course_file.DEFAULT_LIMITS["test"]
     scratch = Path(tempfile.mkdtemp(prefix="physlab-test-"))
     results, jobs = [], []
     kit = None
@@ -832,7 +981,7 @@ def cmd_run(args) -> int:
             if not exe.exists():
                 result.compile_error += f"{exe.name} was not built\n"
                 continue
-            cases = list_tests(exe, stage)
+            cases = course_points(stage, list_tests(exe, stage))
             result.tests += cases
             jobs += [(own_file_executable(exe, c), c) for c in cases]
         results.append(result)
@@ -849,7 +998,8 @@ def cmd_run(args) -> int:
         shutil.rmtree(scratch, ignore_errors=True)
     title = f"PhysLab tests against {args.variant}/"
     text = report(results, args.seed, title)
-    mistagged = tag_problems(results) if args.variant == "solutions" else []
+    mistagged = [f"TAG: {p}" for p in tag_problems(results)] + [f"HINT: {p}" for p in hint_problems(stages)] \
+        if args.variant == "solutions" else []
     if args.out:
         write_outputs(Path(args.out), text, gradescope_json(results, time.monotonic() - start))
     if args.expect == "fail":
@@ -859,7 +1009,7 @@ def cmd_run(args) -> int:
         passed, failed = summary_line(results)
         print(f"\n{passed} passed, {failed} failed")
     for problem in mistagged:
-        print(f"  TAG: {problem}")
+        print(f"  {problem}")
     failed += len(mistagged)
     if args.summary:
         graded = [t for r in results for t in r.tests if t.graded]
@@ -1236,8 +1386,11 @@ class Builder:
                 return Compiled(error=f"{name}: refused: inline assembly ({assembly}); lab code "
                                       f"is C++ only")
             shutil.copyfile(obj, target)
-            shutil.copyfile(target, cached)
-            cached_log.write_text(log)
+            # Atomically: another submission graded at once may read the same entry
+            partial = cached.with_name(f".{key}.{threading.get_ident()}.tmp")
+            shutil.copyfile(target, partial)
+            os.replace(partial, cached)
+            write_atomically(cached_log, log)
             return Compiled(target, log)
         finally:
             shutil.rmtree(work, ignore_errors=True)
@@ -1457,31 +1610,56 @@ def link_own_files(builder: Builder, kit: Kit, result: StageResult, objects: dic
                                 f"need those written too")
 
 
-def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> dict:
-    """Grades one submission into `out`. Never raises: whatever the submission does, report.txt and
-    results.json are written, last and atomically."""
+def in_course(course, stage: str, cases: list) -> list:
+    """The cases of the course (all without one), with the course's points and visibility."""
+    if course is None:
+        return cases
+    kept = []
+    for case in cases:
+        test = course.test(stage, case.name)
+        if test is not None:
+            case.course_points, case.course_hidden = test.points, test.hidden and not case.hidden
+            kept.append(case)
+    return kept
+
+
+def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, course=None,
+              quiet: bool = False) -> tuple:
+    """Grades one submission into `out`; returns (results.json's data, the lab results). Never
+    raises: whatever the submission does, report.txt and results.json are written, last and
+    atomically. `quiet`: no report on the terminal (a class prints a progress line instead)."""
     start = time.monotonic()
     deadline = Deadline(args.deadline)
     title = f"PhysLab grade of {submission.name}"
     private = Path(tempfile.mkdtemp(prefix="physlab-grade-"))
     shared = Path(tempfile.mkdtemp(prefix="physlab-sandbox-"))
+    workers = len(sandbox.slots)
+    results = []
     try:
         stages = select_stages(discover_stages(ROOT), args.labs)
+        if course is not None:
+            stages = [s for s in stages if s in course.labs]
         labs = find_labs(submission) if submission.is_dir() else None
         if labs is None:
             raise RuntimeError("no labs/ folder with NN_name stages in the submission")
-        os.chmod(shared, 0o711)
+        if sandbox.gid is not None:
+            # Only this submission's sandbox users (its group) may enter: others graded at the same
+            # time cannot reach its hidden tests
+            os.chown(shared, 0, sandbox.gid)
+            os.chmod(shared, 0o710)
+        else:
+            os.chmod(shared, 0o711)
         shutil.copytree(ROOT / "common" / "include", shared / "include")
         run_dir = shared / "run"
         run_dir.mkdir(mode=0o711)
         for path in [shared / "include"] + list((shared / "include").rglob("*")):
             os.chmod(path, 0o755 if path.is_dir() else 0o644)
         builder = Builder(kit, sandbox, private, shared, deadline, args.compile_timeout)
-        results, visible_jobs, hidden_jobs = [], [], []
+        visible_jobs, hidden_jobs = [], []
         for stage in stages:
-            visible = list_tests(kit.build / f"test_{stage}", stage)
+            visible = in_course(course, stage, list_tests(kit.build / f"test_{stage}", stage))
             hidden_ref = kit.build / f"test_{stage}_hidden"
-            hidden = list_tests(hidden_ref, stage) if hidden_ref.exists() else []
+            hidden = in_course(course, stage, list_tests(hidden_ref, stage) if hidden_ref.exists() else [])
             result = StageResult(stage, visible + hidden)
             exes = build_stage(builder, kit, labs, result, hidden, run_dir)
             if exes is None:
@@ -1496,7 +1674,7 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> 
         # and their files removed, so no student process can carry a hidden test's text into a
         # visible output.
         make_homes(sandbox, shared)
-        run_cases(sandbox, visible_jobs, args.seed, args.timeout, deadline, private, shared, args.jobs)
+        run_cases(sandbox, visible_jobs, args.seed, args.timeout, deadline, private, shared, workers)
         sandbox.finish()
         jobs, copies = [], {}
         for hidden_exe, case in hidden_jobs:
@@ -1506,7 +1684,7 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> 
                 os.chmod(copies[hidden_exe], 0o755)
             jobs.append((copies[hidden_exe], case))
         make_homes(sandbox, shared)
-        run_cases(sandbox, jobs, args.seed, args.timeout, deadline, private, shared, args.jobs)
+        run_cases(sandbox, jobs, args.seed, args.timeout, deadline, private, shared, workers)
         sandbox.finish()
         text = report(results, args.seed, title)
         data = gradescope_json(results, time.monotonic() - start)
@@ -1518,12 +1696,14 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path) -> 
             error = f"{error}; then, ending the sandbox: {cleanup}"
         text = f"{title}\n\nGRADING FAILED: {error}"
         data = failure_outputs(out, title, str(error), time.monotonic() - start)
+        results = []
     finally:
         shutil.rmtree(private, ignore_errors=True)
         shutil.rmtree(shared, ignore_errors=True)
-    print(text)
-    print(f"\nwrote {out / 'report.txt'} and {out / 'results.json'}")
-    return data
+    if not quiet:
+        print(text)
+        print(f"\nwrote {out / 'report.txt'} and {out / 'results.json'}")
+    return data, results
 
 
 def make_homes(sandbox: Sandbox, shared: Path) -> None:
@@ -1542,12 +1722,66 @@ def make_private(path: Path) -> None:
         os.chmod(path, stat.S_IMODE(os.stat(path).st_mode) & ~0o077)
 
 
+def submission_problems(paths: list) -> list:
+    """What makes a submission ungradable before anything starts: missing, not a folder, empty."""
+    problems = []
+    for p in paths:
+        path = Path(p)
+        if not path.exists() and not path.is_symlink():
+            problems.append(f"submission {p}: no such folder")
+        elif path.is_symlink() or not path.is_dir():
+            problems.append(f"submission {p}: not a folder (a student's labs/ folder or a copy of the repository)")
+        elif not any(path.iterdir()):
+            problems.append(f"submission {p}: the folder is empty")
+    names = [Path(p).absolute().name for p in paths]
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if len(paths) > 1 and twice:
+        problems.append(f"two submissions named {twice[0]}: each is graded into --out/<name>/")
+    return problems
+
+
+def limits_of(args, course) -> None:
+    """The time limits: the command line's, else the course file's, else the defaults."""
+    limits = course.limits if course is not None else course_file.DEFAULT_LIMITS
+    for option, key in (("deadline", "deadline"), ("timeout", "test"), ("compile_timeout", "compile")):
+        if getattr(args, option) is None:
+            setattr(args, option, limits[key])
+
+
 def cmd_grade(args) -> int:
-    """Grade one submission into --out, or several into --out/<name>/ plus scores.csv."""
+    """Grade one submission into --out, or several (a class, in parallel) into --out/<name>/ plus
+    scores.csv, tests.csv and class.html. The course file and the submissions are checked before
+    anything is graded."""
     out = Path(args.out).resolve()
+    problems = submission_problems(args.submissions)
+    course = None
+    if args.course:
+        try:
+            course = course_file.load(args.course)
+        except course_file.CourseError as error:
+            problems.insert(0, f"course file {error}")
+    if course is not None and args.labs:
+        wanted = select_stages(discover_stages(ROOT), args.labs)
+        problems += [f"--labs {s}: lab {s} is not in the course {args.course}" for s in wanted if s not in course.labs]
+    if problems:
+        for problem in problems:
+            print(f"grader: {problem}", file=sys.stderr)
+        if len(args.submissions) == 1:  # Gradescope: the student's result says why
+            failure_outputs(out, f"PhysLab grade of {Path(args.submissions[0]).name}",
+                            "; ".join(problems), 0.0)
+        print("grader: nothing graded", file=sys.stderr)
+        return 2
+    limits_of(args, course)
     out.mkdir(parents=True, exist_ok=True)
-    sandbox = Sandbox(args.jobs, switch_user=True)
-    if sandbox.root:
+    single = len(args.submissions) == 1
+    # A class is graded several submissions at once, each with sandbox users of its own; as the
+    # current user (not root) nothing keeps two submissions' processes apart: one at a time.
+    root = os.geteuid() == 0
+    parallel = 1 if single or not root else max(1, min(len(args.submissions), os.cpu_count() or 1, args.jobs))
+    jobs_each = max(1, args.jobs // parallel)
+    sandboxes = [Sandbox(jobs_each, switch_user=True, first=k * jobs_each,
+                         group="" if single else SANDBOX_GROUP.format(k)) for k in range(parallel)]
+    if sandboxes[0].root:
         for path in (ROOT, Path(args.build).resolve(), out):
             make_private(path)
     try:
@@ -1555,22 +1789,60 @@ def cmd_grade(args) -> int:
         kit.require_notary()
     except Exception as error:  # no usable instructor build: every submission still gets its files
         for sub_path in args.submissions:
-            target = out if len(args.submissions) == 1 else out / Path(sub_path).absolute().name
+            target = out if single else out / Path(sub_path).absolute().name
             failure_outputs(target, f"PhysLab grade of {Path(sub_path).name}", str(error), 0.0)
         print(f"grader: {error}", file=sys.stderr)
         return 1
-    if len(args.submissions) == 1:
-        grade_one(args, kit, sandbox, Path(args.submissions[0]).absolute(), out)
+    if course is not None:
+        print(course.summary())
+    if single:
+        grade_one(args, kit, sandboxes[0], Path(args.submissions[0]).absolute(), out, course)
         return 0
+    graded = grade_class(args, kit, sandboxes, out, course)
     rows = ["submission,score,max_score"]
-    for sub_path in args.submissions:
-        name = Path(sub_path).absolute().name
-        data = grade_one(args, kit, sandbox, Path(sub_path).absolute(), out / name)
-        rows.append(f"{name},{data['score']:g},{data['max_score']:g}")
+    rows += [f"{name},{data['score']:g},{data['max_score']:g}" for name, (data, _, _) in graded.items()]
     write_atomically(out / "scores.csv", "\n".join(rows) + "\n")
-    print("\n".join(rows))
-    print(f"wrote {out / 'scores.csv'}")
+    import class_report  # the class's tables and page: only an instructor grading a class needs them
+    class_report.write(out, graded, course)
+    for name, (data, _, seconds) in graded.items():
+        print(f"{name},{data['score']:g},{data['max_score']:g}  ({seconds:.0f} s)")
+    times = [seconds for _, _, seconds in graded.values()]
+    print(f"{len(times)} submissions, {parallel} at a time: {sum(times) / len(times):.0f} s each on "
+          f"average (slowest {max(times):.0f} s)")
+    print(f"wrote {out / 'scores.csv'}, {out / 'tests.csv'} and {out / 'class.html'}")
     return 0
+
+
+def grade_class(args, kit: Kit, sandboxes: list, out: Path, course) -> dict:
+    """Grades the submissions, len(sandboxes) at a time, with a progress line after each; returns
+    {name: (results.json's data, lab results, seconds)} in the order given."""
+    paths = [Path(p).absolute() for p in args.submissions]
+    waiting = list(reversed(paths))
+    graded, lock = {}, threading.Lock()
+    start = time.monotonic()
+
+    def worker(sandbox: Sandbox) -> None:
+        while True:
+            with lock:
+                if not waiting:
+                    return
+                path = waiting.pop()
+            began = time.monotonic()
+            data, results = grade_one(args, kit, sandbox, path, out / path.name, course, quiet=True)
+            seconds = time.monotonic() - began
+            with lock:
+                graded[path.name] = (data, results, seconds)
+                done, total = len(graded), len(paths)
+                left = (time.monotonic() - start) / done * (total - done)
+                print(f"graded {done}/{total}: {path.name} {data['score']:g}/{data['max_score']:g} "
+                      f"in {seconds:.0f} s; about {left / 60:.1f} min left", file=sys.stderr, flush=True)
+
+    threads = [threading.Thread(target=worker, args=(sandbox,)) for sandbox in sandboxes]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    return {p.name: graded[p.name] for p in paths}
 
 
 # ---- Gradescope --------------------------------------------------------------------------------
@@ -1584,12 +1856,21 @@ def cmd_grade(args) -> int:
 # target), no other tool.
 GRADING_FILES = re.compile(r"^(physlab|CMakeLists\.txt|cmake/PhysLab(Dependencies|Docs)?\.cmake|"
                            r"common/.*|solutions/.*|labs/.*|tests/(?!hidden/(mutants|adversarial)/).*|"
-                           r"docs/lab\d\d_[a-z0-9_]+\.md|docs/Doxyfile\.in|tools/grader\.py)$")
+                           r"docs/lab\d\d_[a-z0-9_]+\.md|docs/Doxyfile\.in|tools/(grader|course)\.py)$")
 
 
 def cmd_gradescope(args) -> int:
     """Writes the Gradescope autograder zip: the tracked files grading needs (GRADING_FILES) under
-    physlab/, with setup.sh and run_autograder at its top level."""
+    physlab/, with setup.sh and run_autograder at its top level; with a course file, that file as
+    physlab/course.toml, which run_autograder then grades with."""
+    course = None
+    if args.course:
+        try:
+            course = course_file.load(args.course)
+        except course_file.CourseError as error:
+            print(f"grader: course file {error}; no zip written", file=sys.stderr)
+            return 2
+        print(course.summary())
     tracked = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True,
                              check=True).stdout.decode().split("\0")
     files = [f for f in tracked if GRADING_FILES.match(f)]
@@ -1601,8 +1882,10 @@ def cmd_gradescope(args) -> int:
             info = zipfile.ZipInfo(script)
             info.external_attr = 0o755 << 16
             z.writestr(info, (ROOT / "tools" / "gradescope" / script).read_text())
-    print(f"wrote {out} ({len(files)} of the {len([f for f in tracked if f])} tracked files, "
-          f"{out.stat().st_size // 1024} KiB)")
+        if course is not None:
+            z.write(Path(args.course), "physlab/course.toml")
+    print(f"wrote {out} ({len(files)} of the {len([f for f in tracked if f])} tracked files"
+          f"{', and the course file' if course else ''}, {out.stat().st_size // 1024} KiB)")
     return 0
 
 
@@ -1614,8 +1897,9 @@ def main() -> int:
     common.add_argument("--labs", nargs="*", default=[], help="lab numbers or names (default: all)")
     common.add_argument("--seed", type=int, default=int.from_bytes(os.urandom(3), "big"),
                         help="Catch2 --rng-seed for every test (default: random, printed)")
-    common.add_argument("--timeout", type=float, default=30.0,
-                        help="seconds per test case (the slowest reference test takes about 1 s)")
+    common.add_argument("--timeout", type=float, default=None,
+                        help="seconds per test case (default 30, or the course file's; the slowest "
+                             "reference test takes about 1 s)")
     common.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     run = sub.add_parser("run", parents=[common], help="run built tests and report")
     run.add_argument("--build", required=True, help="the CMake build folder")
@@ -1631,13 +1915,17 @@ def main() -> int:
     grade.add_argument("--out", required=True,
                        help="folder for report.txt and results.json (several: DIR/<name>/ and scores.csv)")
     grade.add_argument("--build", required=True, help="the instructor's built tree")
-    grade.add_argument("--deadline", type=float, default=540.0,
-                       help="seconds for the whole grade of one submission (Gradescope allows 600)")
-    grade.add_argument("--compile-timeout", type=float, default=120.0,
-                       help="seconds to compile one lab file")
+    grade.add_argument("--deadline", type=float, default=None,
+                       help="seconds for the whole grade of one submission (default 540, or the "
+                            "course file's; Gradescope allows 600)")
+    grade.add_argument("--compile-timeout", type=float, default=None,
+                       help="seconds to compile one lab file (default 120, or the course file's)")
+    grade.add_argument("--course", help="the course file (the Grading page): its labs, sections, "
+                                        "points, hidden tests and time limits")
     grade.set_defaults(func=cmd_grade)
     package = sub.add_parser("gradescope", help="write the Gradescope autograder zip")
     package.add_argument("--out", required=True, help="the zip file to write")
+    package.add_argument("--course", help="the course file the zip grades with (physlab/course.toml)")
     package.set_defaults(func=cmd_gradescope)
     args = parser.parse_args()
     return args.func(args)

@@ -7,7 +7,9 @@
 set -euo pipefail
 cd "${AUTOGRADER_ROOT:-/autograder}/source/physlab"
 ./physlab setup
-./physlab grade labs --out /tmp/physlab-warm-up >/dev/null
+course=()
+[ ! -f course.toml ] || course=(--course course.toml)
+./physlab grade labs --out /tmp/physlab-warm-up "${course[@]}" >/dev/null
 # The warm-up grades the stubs: a failure there (a stub that does not compile, a build that timed
 # out) would otherwise surface only at the first submission, as a zero.
 if grep -q "GRADING FAILED\|did not compile" /tmp/physlab-warm-up/report.txt; then
