@@ -362,19 +362,21 @@ TEST_CASE("timewarp: no body is ever behind one it has met", "[lab05][pts=1][sec
   // A dense gas with long optimistic steps: many rollbacks, each of which must take back every
   // body whose collision used a rolled-back state (else that body keeps a collision with a body
   // now behind it)
+  long rollbacks = 0;
   for (int trial = 0; trial < 3; ++trial) {
     std::vector<TimewarpSphere> spheres;
     std::vector<SphereState> states;
-    randomGas(10, Vec3::Zero(), spheres, states);
+    randomGas(20, Vec3::Zero(), spheres, states);
     TimewarpSettings settings;
     settings.max_step = 1.0;
     settings.max_travel = uniform(0.5, 2.0);
     TimewarpWorld world(spheres, states, settings);
     world.run(2.0);
-    CHECK(world.stats().rollbacks > 0);
+    rollbacks += world.stats().rollbacks;
     CHECK(world.largestLag() == 0.0);
     for (int k = 0; k < world.size(); ++k) CHECK(world.state(k).t == 2.0);
   }
+  CHECK(rollbacks > 0);  // else the scenes would not test the rule
   // Fixed: the chain scene, where the ball's impact takes sphere 2 back through sphere 1
   std::vector<TimewarpSphere> spheres;
   std::vector<SphereState> states;

@@ -19,7 +19,9 @@
 /// (rollback time of body b, rollbackTimes()), \f$j\f$ `j` (impulse, as in section 2).
 #pragma once
 
+#include <functional>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "physlab/math.hpp"
@@ -143,6 +145,9 @@ class TimewarpWorld {
   /// body used its state (a collision they had, still in that body's history), checked after
   /// every collision (steps only move clocks forward): 0 when no body ever fell behind [s].
   double largestLag() const { return largest_lag_; }
+  /// Calls `observer` after every scheduler action of run() (a step, or an impact with its
+  /// rollback), so that a demo can watch the bodies' clocks; none by default.
+  void observe(std::function<void(const TimewarpWorld&)> observer) { observer_ = std::move(observer); }
 
  private:
   void stepBody(int i, double t_end);
@@ -153,12 +158,14 @@ class TimewarpWorld {
   std::vector<std::vector<SphereState>> history_;  // per body, ascending t; front is the start
   std::vector<std::vector<int>> partner_;           // the body met at each history entry (-1: start)
   std::vector<double> local_;                       // t_i
+  std::vector<double> clocks_before_;               // local_ before a scheduler action
   std::vector<TimewarpEvent> events_;
   std::vector<TimewarpRollback> rollbacks_;
   TimewarpSettings settings_;
   TimewarpStats stats_;
   double time_ = 0.0;
   double largest_lag_ = 0.0;
+  std::function<void(const TimewarpWorld&)> observer_;
 };
 
 /// Counts of a synchronous run.

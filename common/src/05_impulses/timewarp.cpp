@@ -94,10 +94,13 @@ void TimewarpWorld::run(double t_end) {
     const auto [t, i] = queue.top();
     queue.pop();
     if (t != local_[i] || t >= t_end) continue;
-    const std::vector<double> before = local_;
+    clocks_before_ = local_;  // assigned into the same storage: no allocation per step
     stepBody(i, t_end);
+    if (observer_) observer_(*this);
+    // The stepped body always goes back in (an impact at the very start of its step leaves its
+    // clock where it was), and so does every body whose clock moved
     for (int k = 0; k < size(); ++k) {
-      if (local_[k] != before[k]) queue.push({local_[k], k});
+      if (k == i || local_[k] != clocks_before_[k]) queue.push({local_[k], k});
     }
   }
   time_ = t_end;
