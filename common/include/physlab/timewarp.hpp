@@ -158,7 +158,7 @@ class TimewarpWorld {
   std::vector<std::vector<SphereState>> history_;  // per body, ascending t; front is the start
   std::vector<std::vector<int>> partner_;           // the body met at each history entry (-1: start)
   std::vector<double> local_;                       // t_i
-  std::vector<double> clocks_before_;               // local_ before a scheduler action
+  std::vector<int> moved_;                          // bodies whose clock the last action set
   std::vector<TimewarpEvent> events_;
   std::vector<TimewarpRollback> rollbacks_;
   TimewarpSettings settings_;

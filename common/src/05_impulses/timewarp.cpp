@@ -94,20 +94,18 @@ void TimewarpWorld::run(double t_end) {
     const auto [t, i] = queue.top();
     queue.pop();
     if (t != local_[i] || t >= t_end) continue;
-    clocks_before_ = local_;  // assigned into the same storage: no allocation per step
     stepBody(i, t_end);
     if (observer_) observer_(*this);
     // The stepped body always goes back in (an impact at the very start of its step leaves its
-    // clock where it was), and so does every body whose clock moved
-    for (int k = 0; k < size(); ++k) {
-      if (k == i || local_[k] != clocks_before_[k]) queue.push({local_[k], k});
-    }
+    // clock where it was), and so does every body whose clock a rollback moved
+    for (const int k : moved_) queue.push({local_[k], k});
   }
   time_ = t_end;
 }
 
 void TimewarpWorld::stepBody(int i, double t_end) {
   ++stats_.steps;
+  moved_.assign(1, i);
   const double t0 = local_[i];
   const SphereState s_i = stateAt(i, t0);
   // The body's own step: at most max_step, and short enough to move at most max_travel
@@ -155,6 +153,7 @@ void TimewarpWorld::stepBody(int i, double t_end) {
   rollBack(r, t_c, i, partner);
   local_[i] = t_c;
   local_[partner] = t_c;
+  moved_.push_back(partner);
 
   // Resolve the impact at t_c with the lower index as A
   const int a = std::min(i, partner), b = std::max(i, partner);
@@ -205,7 +204,10 @@ void TimewarpWorld::rollBack(const std::vector<double>& r, double t_c, int i, in
     }
     hist.resize(keep);
     with.resize(keep);
-    local_[k] = std::min(local_[k], r[k]);
+    if (r[k] < local_[k]) {
+      local_[k] = r[k];
+      moved_.push_back(k);
+    }
   }
   if (!record.bodies.empty()) {
     ++stats_.rollbacks;
