@@ -118,7 +118,8 @@ double resolveSphereImpact(const Vec3& x_a, Vec3& v_a, double m_a, const Vec3& x
 /// Spheres stepped asynchronously with rollback. Each body keeps its history of saved states
 /// (its start and every collision it took part in) and its local time \f$t_i\f$. run() repeats:
 /// take the body with the smallest local time (priority queue; ties by index); advance it by its
-/// own step \f$h_i = \min(\text{max\_step}, \text{max\_travel}/|v_i|)\f$, not beyond t_end; check
+/// own step \f$h_i = \min(h_{max}, \Delta x_{max}/|v_i|)\f$ (TimewarpSettings::max_step and
+/// max_travel), not beyond t_end; check
 /// it against every other body j over the window both have computed, \f$[t_i, \min(t_i + h_i,
 /// t_j)]\f$ (j's part beyond \f$t_j\f$ is checked when j steps), piece by piece of j's history,
 /// with sphereImpactTime(); at the earliest impact \f$t_c\f$ cut the step short, roll back the
@@ -129,7 +130,10 @@ class TimewarpWorld {
   /// InvalidInput naming the body and field for a bad description or state (masses and radii
   /// positive, epsilon in [0, 1], finite vectors, a common start time), or bad settings.
   TimewarpWorld(std::vector<TimewarpSphere> spheres, std::vector<SphereState> states, TimewarpSettings settings = {});
-  /// Advances every body to t_end [s]. InvalidInput when t_end is not finite or before time().
+  /// Advances every body to t_end [s]. InvalidInput when t_end is not finite or before time();
+  /// NumericalFailure, naming the pair, when an impact is left approaching (v_rel below
+  /// \f$-10^{-9}\f$ m/s times the speeds) or unanswered at the start of a step (j <= 0), which the
+  /// scheduler would otherwise find again for ever.
   void run(double t_end);
 
   int size() const { return static_cast<int>(spheres_.size()); }  ///< number of bodies

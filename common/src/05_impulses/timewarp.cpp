@@ -161,6 +161,15 @@ void TimewarpWorld::stepBody(int i, double t_end) {
   const double epsilon = std::min(spheres_[a].epsilon, spheres_[b].epsilon);
   const double j = resolveSphereImpact(s_a.x, s_a.v, spheres_[a].mass, s_b.x, s_b.v, spheres_[b].mass,
                                        spheres_[b].radius, epsilon);
+  // An impact the student's functions found but did not push apart would be found again at once,
+  // for ever: refuse it by name instead of hanging
+  const double v_rel_after = (s_a.x - s_b.x).normalized().dot(s_a.v - s_b.v);
+  if ((!(j > 0.0) && t_c == t0) || v_rel_after < -1e-9 * (1.0 + s_a.v.norm() + s_b.v.norm())) {
+    throw NumericalFailure("timewarp: spheres " + std::to_string(a) + " and " + std::to_string(b) + " at t = " +
+                           std::to_string(t_c) + ": sphereImpactTime() found an impact that resolveSphereImpact() (j = " +
+                           std::to_string(j) + ", v_rel after = " + std::to_string(v_rel_after) +
+                           ") did not push apart; the scheduler would find it again for ever");
+  }
   if (j > 0.0) {
     history_[a].push_back(s_a);
     partner_[a].push_back(b);
