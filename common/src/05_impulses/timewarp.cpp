@@ -127,7 +127,9 @@ void TimewarpWorld::stepBody(int i, double t_end) {
     while (true) {
       const double next = k + 1 < static_cast<int>(hist.size()) ? hist[k + 1].t : kInf;
       const double e = std::min(next, hi);
-      const SphereState a = ballistic(s_i, settings_.gravity, s), b = ballistic(hist[k], settings_.gravity, s);
+      // At the step's start body i is where it is (no flight to compute): most windows have one piece
+      const SphereState a = s == t0 ? s_i : ballistic(s_i, settings_.gravity, s);
+      const SphereState b = ballistic(hist[k], settings_.gravity, s);
       ++stats_.pair_checks;
       const double dt = sphereImpactTime(a.x, a.v, spheres_[i].radius, b.x, b.v, spheres_[j].radius);
       if (s + dt <= e) {
