@@ -53,7 +53,8 @@ struct TimewarpEvent {
 /// One rollback: what caused it and which bodies went back to which time.
 struct TimewarpRollback {
   double t_c = 0.0;             ///< the time of impact that caused it [s]
-  int a = 0, b = 0;             ///< the colliding pair (a < b)
+  int a = 0;                    ///< the colliding pair's lower body index
+  int b = 0;                    ///< the colliding pair's higher body index
   std::vector<int> bodies;      ///< the bodies rolled back, ascending
   std::vector<double> times;    ///< the time each of them went back to, same order [s]
 };
