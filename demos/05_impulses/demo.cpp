@@ -1,7 +1,8 @@
 // Lab 5 demo: penalty springs against impulses, sequential against simultaneous impulses (Newton's
 // cradle, a resting stack, convergence per sweep), a bouncing ball's apex heights, friction
 // (a thrown sphere that starts to roll, a sliding box), the cost of each phase of World::step,
-// and two animations (the cradle and a rain of boxes into a container).
+// two animations (the cradle and a rain of boxes into a container), and Timewarp against the
+// synchronous World on a fast ball through a row (event times, cost, the bodies' clocks).
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include "physlab/error.hpp"
 #include "physlab/plot.hpp"
 #include "physlab/rigid.hpp"
+#include "physlab/timewarp.hpp"
 #include "physlab/world.hpp"
 
 using namespace physlab;
@@ -590,6 +592,219 @@ void rainAnimation(const DemoOptions& options, std::vector<std::string>& written
   });
 }
 
+// ---------------------------------------------------------------------------------------------
+// Timewarp (section 9) against synchronous stepping
+
+// One colour per way of stepping, in the three Timewarp charts
+const std::string kTimewarpStyle = " lc rgb '#6a3d9a'";
+const std::string kToiStyle = " lc rgb '#33a02c'";
+const std::string kFixedStyle = " lc rgb '#1f5fbf'";
+
+// The sparse scene of the section: a ball at 4 m/s through a row of 5 spheres 0.3 m apart, and
+// `background` slow spheres that never meet anything. Exact impact k at (0.8 + 0.3 k) / 4 s.
+constexpr int kRow = 5;
+constexpr double kGap = 0.3, kV0 = 4.0;
+double exactImpact(int k) { return (0.8 + kGap * k) / kV0; }
+
+struct SparseScene {
+  std::vector<TimewarpSphere> spheres;
+  std::vector<SphereState> states;
+};
+
+SparseScene sparseScene(int background) {
+  SparseScene scene;
+  fastBallThroughRow(kRow, kGap, kV0, background, 5u, scene.spheres, scene.states);
+  return scene;
+}
+
+// The same largest step for both exact methods, so that they differ in what an impact costs:
+// every body (synchronous) or only the bodies involved (Timewarp)
+constexpr double kLargestStep = 0.5;
+
+TimewarpSettings timewarpSettings() {
+  TimewarpSettings settings;
+  settings.max_step = kLargestStep;
+  settings.max_travel = 0.05;
+  return settings;
+}
+
+// The largest error of the row's impact times in a list of events [s]; NaN when one is missing.
+double largestTimeError(const std::vector<TimewarpEvent>& events) {
+  double error = 0.0;
+  for (int k = 0; k < kRow; ++k) {
+    const auto it = std::find_if(events.begin(), events.end(),
+                                 [k](const TimewarpEvent& e) { return e.a == k && e.b == k + 1; });
+    if (it == events.end()) return kNaN;
+    error = std::max(error, std::abs(it->t - exactImpact(k)));
+  }
+  return error;
+}
+
+// The fixed-step World on the row alone: impact k is seen when sphere k + 1 first moves; the
+// largest error against the exact times [s].
+double fixedStepTimeError(double h, double duration) {
+  const SparseScene row = sparseScene(0);
+  Scene scene;
+  for (std::size_t i = 0; i < row.spheres.size(); ++i) {
+    scene.bodies.push_back(BodyDescription::sphere(1.0, 0.1, 1.0, 0.0));
+    BodyState state;
+    state.x = row.states[i].x;
+    state.P = row.states[i].v;
+    scene.states.push_back(state);
+  }
+  World world(scene, settingsFor(ResponseMethod::Sequential, Vec3::Zero()));
+  std::vector<double> seen(kRow, kNaN);
+  for (long n = 1; n <= std::lround(duration / h); ++n) {
+    world.step(h);
+    for (int k = 0; k < kRow; ++k) {
+      if (std::isnan(seen[k]) && world.velocity(k + 1).x() > 1e-9) seen[k] = world.time();
+    }
+  }
+  double error = 0.0;
+  for (int k = 0; k < kRow; ++k) error = std::max(error, std::abs(seen[k] - exactImpact(k)));
+  return error;
+}
+
+// Impact-time error against work: the fixed-step World needs a step as short as the error it may
+// make, the synchronous sub-stepping and Timewarp hit every impact to round-off. Work is counted
+// as body states advanced (the World: bodies times steps).
+void timewarpTimesChart(const DemoOptions& options, std::vector<std::string>& written, Table& table) {
+  const double duration = 1.0, floor = 1e-16;
+  const int background = options.quick ? 20 : 100;
+  const int bodies = 1 + kRow + background;
+  Chart chart("Ball through a row of 5 (+" + std::to_string(background) +
+                  " drifting spheres): impact-time error against work",
+              "body states advanced", "largest impact-time error [s] (round-off drawn at 1e-16)");
+  chart.logX().logY();
+  bool drawn = false;
+  drawn |= attempt("timewarp impact times, fixed step", [&] {
+    Series fixed{"fixed step (Lab 5 World)", {}, {}, "linespoints pt 7" + kFixedStyle};
+    for (const double h : {1e-2, 3e-3, 1e-3, 3e-4, 1e-4}) {
+      const double error = fixedStepTimeError(h, 0.6);
+      fixed.x.push_back(bodies * duration / h);
+      fixed.y.push_back(std::max(error, floor));
+      if (h == 1e-3) table.add({"timewarp: fixed-step World, h = 1 ms: largest impact-time error [s]", fmt(error, 3), "about h"});
+    }
+    chart.add(fixed);
+  });
+  drawn |= attempt("timewarp impact times, synchronous sub-steps", [&] {
+    Series toi{"synchronous, TOI sub-steps", {}, {}, "linespoints pt 5" + kToiStyle};
+    for (const double h : {kLargestStep, 0.1, 0.03, 0.01}) {
+      const SparseScene scene = sparseScene(background);
+      std::vector<TimewarpEvent> events;
+      SynchronousStats stats;
+      runSynchronousToi(scene.spheres, scene.states, Vec3::Zero(), h, duration, events, stats);
+      toi.x.push_back(static_cast<double>(stats.body_updates));
+      toi.y.push_back(std::max(largestTimeError(events), floor));
+    }
+    chart.add(toi);
+  });
+  drawn |= attempt("timewarp impact times, Timewarp", [&] {
+    Series warp{"Timewarp", {}, {}, "linespoints pt 9 ps 1.5" + kTimewarpStyle};
+    for (const double travel : {0.2, 0.05, 0.01}) {
+      const SparseScene scene = sparseScene(background);
+      TimewarpSettings settings = timewarpSettings();
+      settings.max_travel = travel;
+      TimewarpWorld world(scene.spheres, scene.states, settings);
+      world.run(duration);
+      warp.x.push_back(static_cast<double>(world.stats().steps));
+      const double error = largestTimeError(world.events());
+      warp.y.push_back(std::max(error, floor));
+      if (travel == 0.05) {
+        table.add({"timewarp: Timewarp largest impact-time error [s]", fmt(error, 3), "round-off"});
+        table.add({"timewarp: Timewarp rollbacks, bodies rolled back", std::to_string(world.stats().rollbacks) + ", " +
+                       std::to_string(world.stats().bodies_rolled_back), "one or more per row sphere"});
+      }
+    }
+    chart.add(warp);
+  });
+  if (!drawn) return;
+  for (const auto& p : chart.save(options.out + "/lab05_timewarp_times")) written.push_back(p);
+}
+
+// Work against the number of drifting spheres: states advanced and pair checks of the synchronous
+// sub-stepping (every body to every impact) and of Timewarp (only the bodies involved).
+void timewarpCostChart(const DemoOptions& options, std::vector<std::string>& written, Table& table) {
+  const double duration = 1.0, h = kLargestStep;
+  const std::vector<int> backgrounds = options.quick ? std::vector<int>{10, 30, 100} : std::vector<int>{10, 30, 100, 300, 1000};
+  Chart chart("Ball through a row of 5 among N drifting spheres, 1 s: work of each method", "bodies N",
+              "count (solid: pair checks, dashed: body states advanced)");
+  chart.logX().logY();
+  bool drawn = false;
+  drawn |= attempt("timewarp cost, synchronous sub-steps", [&] {
+    Series checks{"synchronous, TOI sub-steps (h = 0.5 s): pair checks", {}, {}, "linespoints pt 5" + kToiStyle};
+    Series updates{"synchronous: states advanced", {}, {}, "linespoints dt 2 pt 4" + kToiStyle};
+    for (const int background : backgrounds) {
+      const SparseScene scene = sparseScene(background);
+      std::vector<TimewarpEvent> events;
+      SynchronousStats stats;
+      runSynchronousToi(scene.spheres, scene.states, Vec3::Zero(), h, duration, events, stats);
+      const double n = static_cast<double>(scene.spheres.size());
+      checks.x.push_back(n);
+      checks.y.push_back(static_cast<double>(stats.pair_checks));
+      updates.x.push_back(n);
+      updates.y.push_back(static_cast<double>(stats.body_updates));
+      if (background == backgrounds.back()) {
+        table.add({"timewarp: synchronous sub-steps at N = " + fmt(n, 4) + ": pair checks, states advanced",
+                   std::to_string(stats.pair_checks) + ", " + std::to_string(stats.body_updates), "N^2/2 and N per step and impact"});
+      }
+    }
+    chart.add(checks).add(updates);
+  });
+  drawn |= attempt("timewarp cost, Timewarp", [&] {
+    Series checks{"Timewarp (largest step 0.5 s): pair checks", {}, {}, "linespoints pt 9 ps 1.5" + kTimewarpStyle};
+    Series updates{"Timewarp: body steps", {}, {}, "linespoints dt 2 pt 8 ps 1.5" + kTimewarpStyle};
+    for (const int background : backgrounds) {
+      const SparseScene scene = sparseScene(background);
+      TimewarpWorld world(scene.spheres, scene.states, timewarpSettings());
+      world.run(duration);
+      const double n = static_cast<double>(scene.spheres.size());
+      checks.x.push_back(n);
+      checks.y.push_back(static_cast<double>(world.stats().pair_checks));
+      updates.x.push_back(n);
+      updates.y.push_back(static_cast<double>(world.stats().steps));
+      if (background == backgrounds.back()) {
+        table.add({"timewarp: Timewarp at N = " + fmt(n, 4) + ": pair checks, body steps",
+                   std::to_string(world.stats().pair_checks) + ", " + std::to_string(world.stats().steps), "N per body step"});
+      }
+    }
+    chart.add(checks).add(updates);
+  });
+  if (!drawn) return;
+  for (const auto& p : chart.save(options.out + "/lab05_timewarp_cost")) written.push_back(p);
+}
+
+// The clocks: each body's local time after every scheduler action of Timewarp on the row (no
+// background). The row's spheres run ahead by whole steps and drop back when the ball's
+// impacts roll them back to the time of impact.
+void timewarpClocksChart(const DemoOptions& options, std::vector<std::string>& written, Table& /*table*/) {
+  Chart chart("Timewarp on the ball and the row: every body's own clock, step by step", "scheduler step",
+              "local time of the body [s]");
+  const bool drawn = attempt("timewarp clocks", [&] {
+    const SparseScene scene = sparseScene(0);
+    TimewarpSettings settings = timewarpSettings();
+    settings.max_step = 0.25;
+    TimewarpWorld world(scene.spheres, scene.states, settings);
+    std::vector<Series> clocks;
+    for (int k = 0; k <= kRow; ++k) {
+      const std::string name = k == 0 ? "ball" : "sphere " + std::to_string(k);
+      clocks.push_back({name, {0.0}, {0.0}, k == 0 ? "steps lw 3 lc rgb '#000000'" : "steps"});
+    }
+    long action = 0;
+    world.observe([&](const TimewarpWorld& w) {
+      ++action;
+      for (int k = 0; k <= kRow; ++k) {
+        clocks[k].x.push_back(static_cast<double>(action));
+        clocks[k].y.push_back(w.state(k).t);
+      }
+    });
+    world.run(0.6);
+    for (Series& s : clocks) chart.add(s);
+  });
+  if (!drawn) return;
+  for (const auto& p : chart.save(options.out + "/lab05_timewarp_clocks")) written.push_back(p);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -610,6 +825,9 @@ int main(int argc, char** argv) {
     phaseCostChart(options, written, table);
     cradleAnimation(options, written);
     rainAnimation(options, written);
+    timewarpTimesChart(options, written, table);
+    timewarpCostChart(options, written, table);
+    timewarpClocksChart(options, written, table);
     reportDemo("Lab 5", written, table, options.out + "/lab05_summary.md");
     return 0;
   } catch (const std::exception& e) {

@@ -1,6 +1,7 @@
 // Lab 5 hidden tests (instructor only, shown after grades are published).
 #include <cmath>
 
+#include "physlab/timewarp.hpp"
 #include "physlab/world.hpp"
 #include "support.hpp"
 
@@ -88,4 +89,35 @@ TEST_CASE("hidden: the simultaneous solver bounces a ball by epsilon^2 too", "[l
   // The impact is seen up to one step late, at up to v h below the ground, and the apex is
   // sampled once per step: a few v h of error, v = sqrt(2 g H).
   CHECK(apex / H == Approx(epsilon * epsilon).margin(4 * std::sqrt(2 * 9.81 * H) * h / apex));
+}
+
+TEST_CASE("hidden: timewarp under gravity keeps the row's event times, and restitution 1/2 leaves the speeds by hand", "[lab05][pts=1][hidden][sec=9]") {
+  // Gravity accelerates every sphere alike, so relative motion and the impact times do not change:
+  // the ball hits sphere k + 1 at (0.8 + k gap) / v0 as without it
+  const double gap = uniform(0.1, 0.5), v0 = uniform(2.0, 6.0);
+  std::vector<TimewarpSphere> spheres;
+  std::vector<SphereState> states;
+  fastBallThroughRow(4, gap, v0, 0, 3u, spheres, states);
+  TimewarpSettings settings;
+  settings.gravity = Vec3(0.0, 0.0, -9.81);
+  settings.max_step = 0.5;
+  TimewarpWorld world(spheres, states, settings);
+  world.run(2.0);
+  REQUIRE(world.events().size() == 4);
+  for (int k = 0; k < 4; ++k) {
+    // Closed-form roots from states carried through free flights: round-off only
+    CHECK(world.events()[k].t == Approx((0.8 + k * gap) / v0).epsilon(1e-11));
+  }
+  // By hand: 1 kg at 2 m/s into 3 kg at rest, epsilon 1/2: j = 1.5 * 2 / (1 + 1/3) = 2.25 N s,
+  // so 2 - 2.25 = -0.25 m/s and 2.25 / 3 = 0.75 m/s (relative speed -1 = -epsilon 2)
+  std::vector<SphereState> pair(2);
+  pair[0].v = Vec3(2.0, 0.0, 0.0);
+  pair[1].x = Vec3(1.0, 0.0, 0.0);
+  TimewarpWorld bounce({TimewarpSphere{1.0, 0.1, 0.5}, TimewarpSphere{3.0, 0.1, 1.0}}, pair);
+  bounce.run(1.0);
+  REQUIRE(bounce.events().size() == 1);
+  CHECK(bounce.events()[0].t == Approx(0.4).epsilon(1e-14));  // 0.8 m at 2 m/s: round-off only
+  CHECK(bounce.events()[0].j == Approx(2.25).epsilon(1e-14));
+  CHECK(bounce.state(0).v.isApprox(Vec3(-0.25, 0.0, 0.0), 1e-14));
+  CHECK(bounce.state(1).v.isApprox(Vec3(0.75, 0.0, 0.0), 1e-14));
 }
