@@ -87,6 +87,8 @@ class BroadPhase {
   }
   /// Sets the test counter to zero (the public entry points call it before each query).
   void resetTests() { tests_ = 0; }
+  /// Adds `count` box-box tests made without test() (a loop that tests without branching).
+  void countTests(long count) { tests_ += count; }
 
  private:
   long tests_ = 0;

@@ -30,6 +30,8 @@ bool inside(const Aabb& inner, const Aabb& outer) {
   return (outer.min.array() <= inner.min.array()).all() && (inner.max.array() <= outer.max.array()).all();
 }
 
+static_assert(sizeof(Aabb) == 6 * sizeof(double), "an Aabb is its 6 coordinates, min then max");
+
 std::uint64_t pairKey(int i, int j) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) | static_cast<std::uint32_t>(j);
 }
@@ -243,11 +245,22 @@ void IncrementalBroadPhase::update(PairList& pairs) {
     for (const int id : dirty_list_) dirty_[static_cast<std::size_t>(id)] = 0;
     dirty_list_.clear();
   }
-  // Report the kept pairs whose tight boxes overlap: sorted, since the set is
+  // Report the kept pairs whose tight boxes overlap: sorted, since the set is. Each pair is
+  // written, and the count advanced only when it overlaps: no branch to mispredict
+  pairs.resize(pair_set_.size());
+  const Aabb* tight = tight_.data();
+  BoxPair* out = pairs.data();
+  std::size_t count = 0;
   for (const std::uint64_t key : pair_set_) {
-    const int i = static_cast<int>(key >> 32), j = static_cast<int>(key & 0xffffffffu);
-    if (test(tight_[static_cast<std::size_t>(i)], tight_[static_cast<std::size_t>(j)])) pairs.emplace_back(i, j);
+    const std::uint32_t i = static_cast<std::uint32_t>(key >> 32), j = static_cast<std::uint32_t>(key);
+    const double* a = tight[i].min.data();  // min x, y, z then max x, y, z: 6 doubles in a row
+    const double* b = tight[j].min.data();
+    out[count] = {static_cast<int>(i), static_cast<int>(j)};
+    count += static_cast<std::size_t>((a[0] <= b[3]) & (b[0] <= a[3]) & (a[1] <= b[4]) & (b[1] <= a[4]) &
+                                      (a[2] <= b[5]) & (b[2] <= a[5]));
   }
+  pairs.resize(count);
+  countTests(static_cast<long>(pair_set_.size()));
 }
 
 void IncrementalBroadPhase::clear() {
@@ -272,13 +285,22 @@ void IncrementalBroadPhase::computePairs(const std::vector<Aabb>& boxes, PairLis
       markDirty(id);
     }
   }
-  for (int id = 0; id < n; ++id) {
-    if (contains(id)) {
-      moveValid(id, boxes[static_cast<std::size_t>(id)]);
+  const int known = std::min(n, static_cast<int>(leaf_.size()));
+  for (int id = 0; id < known; ++id) {
+    const Aabb& box = boxes[static_cast<std::size_t>(id)];
+    const Aabb& fat = fat_[static_cast<std::size_t>(id)];
+    // Most boxes stay inside their fat box: test that without branches, copy, go on
+    const bool stays = (fat.min.x() <= box.min.x()) & (fat.min.y() <= box.min.y()) & (fat.min.z() <= box.min.z()) &
+                       (box.max.x() <= fat.max.x()) & (box.max.y() <= fat.max.y()) & (box.max.z() <= fat.max.z());
+    if (stays & (leaf_[static_cast<std::size_t>(id)] != DynamicAabbTree::kNull)) {
+      tight_[static_cast<std::size_t>(id)] = box;
+    } else if (contains(id)) {
+      moveValid(id, box);
     } else {
-      insertProxy(id, boxes[static_cast<std::size_t>(id)]);
+      insertProxy(id, box);
     }
   }
+  for (int id = known; id < n; ++id) insertProxy(id, boxes[static_cast<std::size_t>(id)]);
   // Every id below n is live now; the free ones are those past it, smallest reused first
   free_ids_.clear();
   for (int id = static_cast<int>(leaf_.size()) - 1; id >= n; --id) free_ids_.push_back(id);
