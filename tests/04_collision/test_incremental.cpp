@@ -382,4 +382,18 @@ TEST_CASE("incremental: bad input is refused by name and leaves the scene as it 
   CHECK(pairs == PairList{{0, 1}});
   CHECK(bp.size() == 2);
   CHECK_STRUCTURE(bp);
+  // findPairs checks the boxes in its own pass: a box turned inside out within its fat box and a
+  // NaN are refused by index and axis, and the boxes of the last call stay
+  const std::vector<Aabb> scene = {cuboid(0, 0, 0, 1, 1, 1), cuboid(1, 0, 0, 2, 1, 1), cuboid(3, 0, 0, 4, 1, 1)};
+  IncrementalBroadPhase again;
+  again.findPairs(scene, pairs);
+  std::vector<Aabb> bad = scene;
+  std::swap(bad[1].min.y(), bad[1].max.y());
+  CHECK_THROWS_WITH(again.findPairs(bad, pairs), Contains("box 1") && Contains("min > max") && Contains("y axis"));
+  bad = scene;
+  bad[2].max.z() = nan;
+  CHECK_THROWS_WITH(again.findPairs(bad, pairs), Contains("box 2") && Contains("non-finite") && Contains("z axis"));
+  CHECK(sameBox(again.tightBox(1), scene[1]));
+  again.update(pairs);
+  CHECK(pairs == PairList{{0, 1}});
 }

@@ -78,8 +78,11 @@ class BroadPhase {
   long overlapTests() const { return tests_; }
 
  protected:
-  /// The method itself: `boxes` are valid, `pairs` is empty.
+  /// The method itself: `boxes` are valid (unless validate() is overridden), `pairs` is empty.
   virtual void computePairs(const std::vector<Aabb>& boxes, PairList& pairs) = 0;
+  /// Checks the boxes before computePairs(): requireValidBoxes(). A method that checks them in a
+  /// pass of its own overrides it with nothing, and must throw before it changes any state.
+  virtual void validate(const std::vector<Aabb>& boxes) { requireValidBoxes(boxes); }
   /// The one box-box test every method uses: counts the test, then calls overlaps().
   bool test(const Aabb& a, const Aabb& b) {
     ++tests_;
@@ -445,7 +448,10 @@ class IncrementalBroadPhase final : public BroadPhase {
 
  protected:
   /// Box i is id i: removes ids >= boxes.size(), adds missing ones, moves the rest, updates.
+  /// Checks the boxes itself, in the read-only pass that finds the boxes leaving their fat box.
   void computePairs(const std::vector<Aabb>& boxes, PairList& pairs) override;
+  /// Nothing: computePairs() checks the boxes before it changes anything.
+  void validate(const std::vector<Aabb>& /*boxes*/) override {}
 
  private:
   void requireLive(int id, const char* what) const;
@@ -461,6 +467,7 @@ class IncrementalBroadPhase final : public BroadPhase {
   std::vector<char> dirty_;        ///< per id: 1 when its pairs must be redone at the next update
   std::vector<int> dirty_list_;    ///< the ids with dirty_ set
   std::vector<int> free_ids_;      ///< removed ids, reused last first
+  std::vector<int> leaving_;       ///< computePairs: ids whose box left its fat box, or new ones
   std::vector<std::uint64_t> pair_set_, kept_, found_;  ///< pairs as (i << 32) | j, sorted
   long reinsertions_ = 0, last_reinsertions_ = 0;
 };

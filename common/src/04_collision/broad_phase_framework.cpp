@@ -52,7 +52,7 @@ void requireValidBoxes(const std::vector<Aabb>& boxes) {
 }
 
 void BroadPhase::findPairs(const std::vector<Aabb>& boxes, PairList& pairs) {
-  requireValidBoxes(boxes);
+  validate(boxes);
   pairs.clear();
   resetTests();
   computePairs(boxes, pairs);
