@@ -15,8 +15,10 @@
 /// | UniformGrid | hash each box into the cells it covers | O(n + k) for similar sizes |
 /// | Bvh | a tree of bounding boxes, one query per box | O(n log n + k) |
 /// | KdTree | split space at median planes until few boxes remain | O(n log n + k) |
+/// | IncrementalBroadPhase | a dynamic tree of enlarged boxes, pairs kept between steps | O(m log n + k_f) per step |
 ///
-/// (k: pairs found; k_x: pairs whose intervals overlap on the sweep axis.)
+/// (k: pairs found; k_x: pairs whose intervals overlap on the sweep axis; m: boxes that left
+/// their enlarged box since the last step; k_f: pairs whose enlarged boxes overlap.)
 ///
 /// The objects are meant to be kept and reused: they hold their working memory between calls and
 /// write into a caller's PairList, so that a world stepping many bodies allocates nothing per
@@ -24,6 +26,7 @@
 /// and throw InvalidInput for a box with min > max or a non-finite coordinate.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -75,8 +78,11 @@ class BroadPhase {
   long overlapTests() const { return tests_; }
 
  protected:
-  /// The method itself: `boxes` are valid, `pairs` is empty.
+  /// The method itself: `boxes` are valid (unless validate() is overridden), `pairs` is empty.
   virtual void computePairs(const std::vector<Aabb>& boxes, PairList& pairs) = 0;
+  /// Checks the boxes before computePairs(): requireValidBoxes(). A method that checks them in a
+  /// pass of its own overrides it with nothing, and must throw before it changes any state.
+  virtual void validate(const std::vector<Aabb>& boxes) { requireValidBoxes(boxes); }
   /// The one box-box test every method uses: counts the test, then calls overlaps().
   bool test(const Aabb& a, const Aabb& b) {
     ++tests_;
@@ -84,6 +90,8 @@ class BroadPhase {
   }
   /// Sets the test counter to zero (the public entry points call it before each query).
   void resetTests() { tests_ = 0; }
+  /// Adds `count` box-box tests made without test() (a loop that tests without branching).
+  void countTests(long count) { tests_ += count; }
 
  private:
   long tests_ = 0;
@@ -277,6 +285,191 @@ class KdTree final : public BroadPhase {
   std::vector<int> lists_;     ///< box lists of the nodes on the current path, back to back
   std::vector<double> keys_;   ///< scratch for the median
   long leaves_ = 0;
+};
+
+/// The surface area 2 (dx dy + dy dz + dz dx) of a box [m^2]: the cost measure of the dynamic
+/// tree (the chance that a random ray or box hits it grows with its area).
+inline double surfaceArea(const Aabb& b) {
+  const Vec3 d = b.max - b.min;
+  return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
+}
+
+/// A dynamic AABB tree (Lab 4, section 10): a binary tree whose leaves hold one box each and
+/// whose internal nodes hold the box enclosing their two children, kept balanced while leaves
+/// come and go one at a time (no rebuild).
+///
+/// Insertion: pickSibling() walks down from the root to the node whose pairing with the new
+/// leaf adds least surface area to the tree (greedy descent, below); a new internal node takes
+/// that sibling's place with the sibling and the leaf as children; refitUpward() then walks from
+/// the new node to the root, rotating where the two subtrees' heights differ by more than one
+/// and refitting boxes and heights. Removal: the leaf's parent is replaced by the leaf's
+/// sibling, and refitUpward() runs from the grandparent.
+///
+/// Greedy descent at an internal node N with children C1, C2, for a new box L: pairing L with N
+/// itself costs 2 A(N u L) (a new parent of that area) and every step deeper adds the
+/// "inheritance" 2 (A(N u L) - A(N)) paid by N's enlargement. Descending into a child C costs the
+/// inheritance plus A(C u L) if C is a leaf, or A(C u L) - A(C) if not (a lower bound on what a
+/// pairing below C would add). Stop at N when it is strictly cheaper than both children, else go
+/// to the cheaper child (C1 on a tie).
+///
+/// Nodes live in one pool (a vector) and are addressed by index; freed nodes are chained in a
+/// free list and reused, so a tree of steady size allocates nothing.
+class DynamicAabbTree {
+ public:
+  /// The index that means "no node".
+  static constexpr int kNull = -1;
+  /// A node of the pool.
+  struct Node {
+    Aabb box{Vec3::Zero(), Vec3::Zero()};  ///< leaf: the stored box; internal: encloses both children [m]
+    int parent = kNull;   ///< kNull at the root (in a free node: the next free node)
+    int child1 = kNull;   ///< first child, kNull in a leaf
+    int child2 = kNull;   ///< second child, kNull in a leaf
+    int height = -1;      ///< 0 for a leaf, 1 + the larger child's height inside, -1 when free
+    int id = kNull;       ///< leaf: the caller's id for the box
+    /// True for a leaf (and for a free node).
+    bool isLeaf() const { return child1 == kNull; }
+  };
+
+  /// Inserts a leaf holding `box` (valid, not checked here) and `id`; returns the leaf's node.
+  int insertLeaf(const Aabb& box, int id);
+  /// Removes a leaf made by insertLeaf() and frees it and its parent.
+  void removeLeaf(int leaf);
+  /// Removes everything (the pool's memory is kept).
+  void clear();
+  /// The root's node, kNull when empty.
+  int root() const { return root_; }
+  /// The pool: every node ever allocated, free ones with height -1.
+  const std::vector<Node>& nodes() const { return nodes_; }
+  /// Number of leaves.
+  int leafCount() const { return leaves_; }
+  /// Number of nodes on the longest root-to-leaf path: 0 when empty, 1 for a single leaf.
+  int height() const { return root_ == kNull ? 0 : nodes_[static_cast<std::size_t>(root_)].height + 1; }
+  /// Student: the node the greedy descent by surface-area cost (above) pairs `box` with. The
+  /// tree must not be empty.
+  int pickSibling(const Aabb& box) const;
+  /// Calls visit(id) for every leaf whose box overlaps `box` (touching included).
+  template <class Visit>
+  void query(const Aabb& box, Visit&& visit) {
+    if (root_ == kNull) return;
+    stack_.clear();
+    stack_.push_back(root_);
+    while (!stack_.empty()) {
+      const Node& node = nodes_[static_cast<std::size_t>(stack_.back())];
+      stack_.pop_back();
+      if (!overlaps(box, node.box)) continue;
+      if (node.isLeaf()) {
+        visit(node.id);
+      } else {
+        stack_.push_back(node.child1);
+        stack_.push_back(node.child2);
+      }
+    }
+  }
+
+ private:
+  /// Student: walks from `node` to the root; at each node first balance() it, then recompute
+  /// its box (enclosing its children) and its height, then go on from its parent.
+  void refitUpward(int node);
+  /// Student: if the heights of a's children differ by more than 1, rotates the taller child C
+  /// up into a's place: C keeps its taller child, a takes C's shorter child instead of C, and
+  /// the boxes and heights of a and C are recomputed. Returns the node now at a's place
+  /// (a itself when nothing rotated, or when a is a leaf).
+  int balance(int a);
+  int allocateNode();
+  void freeNode(int node);
+
+  std::vector<Node> nodes_;
+  std::vector<int> stack_;  ///< query stack, kept between queries
+  int root_ = kNull;
+  int free_ = kNull;  ///< first free node, chained through Node::parent
+  int leaves_ = 0;
+};
+
+/// An incremental broad phase for moving scenes (Lab 4, section 10): each box is stored in a
+/// DynamicAabbTree enlarged to a "fat" box, and the pairs whose fat boxes overlap are kept
+/// between steps, so a step only redoes the work for boxes that left their fat box.
+///
+/// Fat box: when a box is added, or moved outside its fat box, its fat box is set to the tight
+/// box grown by `margin` on every side and, along each axis, further by the box's displacement
+/// d since its last move on the side it moves to (min + min(d, 0), max + max(d, 0)): a box moving
+/// steadily by less than the margin per step leaves its fat box rarely. A box whose new tight
+/// box is still inside its fat box (touching the fat box's faces included) changes nothing in
+/// the tree.
+///
+/// The pair set: sorted, every pair (i < j) of live boxes whose fat boxes overlap. update()
+/// drops the pairs of boxes moved out of their fat boxes (or added, or removed) since the last
+/// update, queries the tree with the new fat box of each such box, merges the new pairs in, and
+/// reports the pairs of the set whose TIGHT boxes overlap, sorted: the brute force's answer.
+/// A tight overlap implies a fat one (tight is inside fat), so no pair is missed.
+///
+/// The id interface (add/remove/move/update) is the engine's; findPairs(boxes) treats box i as
+/// id i, adding and removing ids when the number of boxes changes. Buffers are kept, so a step
+/// of a scene of steady size allocates nothing. overlapTests() counts the tight-box tests of the
+/// last update (the tree's queries are not counted).
+class IncrementalBroadPhase final : public BroadPhase {
+ public:
+  /// The default margin [m]: 5 cm, for boxes of decimetres to metres moving centimetres per step.
+  static constexpr double kDefaultMargin = 0.05;
+
+  /// Throws InvalidInput unless `margin` is finite and >= 0.
+  explicit IncrementalBroadPhase(double margin = kDefaultMargin);
+  std::string name() const override { return "incremental AABB tree"; }
+
+  /// Adds a box and returns its id: the most recently removed id if any, else the next unused.
+  /// Throws InvalidInput on a box with min > max or a non-finite coordinate.
+  int add(const Aabb& box);
+  /// Removes the box `id`. Throws InvalidInput if `id` is not a live box.
+  void remove(int id);
+  /// Sets the tight box of `id`; reinserts it with a new fat box if it left its fat box.
+  /// Throws InvalidInput on an unknown id or a bad box.
+  void move(int id, const Aabb& box);
+  /// Brings the pair set up to date and writes the pairs of ids whose tight boxes overlap
+  /// (i < j, sorted) to `pairs`.
+  void update(PairList& pairs);
+  /// Removes every box (memory kept).
+  void clear();
+
+  /// The margin [m].
+  double margin() const { return margin_; }
+  /// Number of live boxes.
+  int size() const { return static_cast<int>(tight_.size() - free_ids_.size()); }
+  /// True when `id` is a live box.
+  bool contains(int id) const;
+  /// The tight box of a live id, as last given [m].
+  const Aabb& tightBox(int id) const;
+  /// The fat box of a live id, as stored in the tree [m].
+  const Aabb& fatBox(int id) const;
+  /// How many reinsertions (boxes that left their fat box) the moves before the last update made.
+  long reinsertions() const { return last_reinsertions_; }
+  /// Number of pairs whose fat boxes overlap (the kept pair set) after the last update.
+  long fatPairs() const { return static_cast<long>(pair_set_.size()); }
+  /// The tree, for tests and drawing.
+  const DynamicAabbTree& tree() const { return tree_; }
+
+ protected:
+  /// Box i is id i: removes ids >= boxes.size(), adds missing ones, moves the rest, updates.
+  /// Checks the boxes itself, in the read-only pass that finds the boxes leaving their fat box.
+  void computePairs(const std::vector<Aabb>& boxes, PairList& pairs) override;
+  /// Nothing: computePairs() checks the boxes before it changes anything.
+  void validate(const std::vector<Aabb>& /*boxes*/) override {}
+
+ private:
+  void requireLive(int id, const char* what) const;
+  int insertProxy(int id, const Aabb& box);
+  void moveValid(int id, const Aabb& box);
+  void markDirty(int id);
+  Aabb fatten(const Aabb& box, const Vec3& displacement) const;
+
+  double margin_;
+  DynamicAabbTree tree_;
+  std::vector<Aabb> tight_, fat_;  ///< per id
+  std::vector<int> leaf_;          ///< per id: its leaf node, kNull when the id is free
+  std::vector<char> dirty_;        ///< per id: 1 when its pairs must be redone at the next update
+  std::vector<int> dirty_list_;    ///< the ids with dirty_ set
+  std::vector<int> free_ids_;      ///< removed ids, reused last first
+  std::vector<int> leaving_;       ///< computePairs: ids whose box left its fat box, or new ones
+  std::vector<std::uint64_t> pair_set_, kept_, found_;  ///< pairs as (i << 32) | j, sorted
+  long reinsertions_ = 0, last_reinsertions_ = 0;
 };
 
 /// One object of every broad phase, brute force first, in the order the charts and tables use.
