@@ -52,8 +52,8 @@ namespace physlab::test {
 /// the LCP test set, apart from any pivoting rule: a P-matrix gives exactly one.
 std::vector<VecX> complementarySolutions(const MatX& A, const VecX& b, double tol);
 
-/// Murty's exponential example for pivoting methods (K. G. Murty, Linear Complementarity,
-/// Linear and Nonlinear Programming, 1988, section 6.1), in our index order: A upper triangular
+/// Murty's exponential example for pivoting methods (after K. G. Murty, "Computational
+/// complexity of complementary pivot methods", 1978), in our index order: A upper triangular
 /// with 1 on the diagonal and 2 above it (a P-matrix), b_i = -(2^{i+1} + 2^{i+2} + ... + 2^n)
 /// for i = 0..n-1 (0-based). Its unique solution has f_{n-1} = 2^n and every other f_i = 0.
 struct PlantedMurty {

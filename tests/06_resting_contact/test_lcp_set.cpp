@@ -1,5 +1,5 @@
 // Lab 6 graded tests: a standard set of small LCPs from the literature for the exact solvers
-// (lcp_set::pivoting, section 3; Lemke, section 4). Murty's exponential example with the pivots counted,
+// (pivoting, section 3; Lemke, section 4). Murty's exponential example with the pivots counted,
 // P-matrices against the enumeration of every complementary basis, degenerate problems (ties in
 // the ratio test, contacts with f = w = 0), positive semidefinite singular problems that have a
 // solution, and problems with none. Each answer is checked for what the solver reports against
@@ -94,7 +94,7 @@ void checkPMatrices(LcpSolver solve) {
 
 // Degenerate problems: ties in the ratio test and contacts with f = w = 0 at the answer.
 void checkDegenerate(LcpSolver solve) {
-  // Murty's cyclic P-matrix with b = -e: every row ties for the first pivot; f = e / 3, w = 0
+  // A cyclic P-matrix with b = -e: every row ties for the first pivot; f = e / 3, w = 0
   MatX C(3, 3);
   C << 1.0, 2.0, 0.0, 0.0, 1.0, 2.0, 2.0, 0.0, 1.0;
   const LcpSolution cyclic = solve(C, -VecX::Ones(3), {});
@@ -192,8 +192,7 @@ using lcp_set::checkPsdSingular;
 using lcp_set::checkInfeasible;
 
 TEST_CASE("pivoting: Murty's exponential example takes 2^n - 1 pivots (n = 1..10), and its answer is the oracle's", "[lab06][pts=1][sec=3]") {
-  // Contacts driven in index order: f_{n-1} once, every earlier contact entering and leaving
-  // the clamped set in the pattern of a binary counter.
+  // Contacts driven in index order, ties to the driven contact: the handout's rule.
   checkMurty(lcp_set::pivoting, 0);
 }
 
