@@ -521,6 +521,74 @@ Split splitResting(const Scene& scene) {
   return s;
 }
 
+// The exact solvers on the frictionless LCP of a pyramid: the one the World hands its resting
+// solver in the pyramid's first step (from rest; every point resting, velocities with the step's
+// gravity), on the normal rows of every contact point: A from contactMatrix(), b from
+// velocityBias() as LcpContactSolver builds them (Baumgarte and slop as oursSettings()).
+// Pivoting gets A with the World's regularization (RestingSettings::regularization times the
+// largest diagonal entry, as LcpContactSolver gives it), Lemke A as it is; both their default
+// LcpOptions (pivot limit 10 n). Reported: what each said (solved, or its LcpFailure), its
+// pivots, the residual of the f it returned, and the wall time of the one call.
+struct ExactSolve {
+  std::string method, outcome;
+  int rows = 0, pivots = -1;
+  bool solved = false;
+  double residual = NAN, seconds = NAN;
+};
+
+// Keeps the frictionless LCP of the first step it is asked to solve, then solves as its base.
+class RecordingSolver : public LcpContactSolver {
+ public:
+  using LcpContactSolver::LcpContactSolver;
+  int solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const std::vector<int>& resting,
+            const std::vector<BodyDescription>& descriptions, const std::vector<BodyState>& states, const Vec3& gravity,
+            double h) override {
+    if (!recorded) {
+      std::vector<ContactRow> rows;
+      VecX depths(static_cast<Index>(resting.size()));
+      for (const int k : resting) {
+        const Contact& c = contacts[static_cast<std::size_t>(k)];
+        depths(static_cast<Index>(rows.size())) = c.depth;
+        rows.push_back({c.a, c.b, c.p, c.n});
+      }
+      lcp.A = contactMatrix(bodies, rows);
+      lcp.b = velocityBias(bodies, rows, depths, h, settings().baumgarte, settings().slop);
+      recorded = true;
+    }
+    return LcpContactSolver::solve(bodies, contacts, resting, descriptions, states, gravity, h);
+  }
+  bool recorded = false;
+  LcpProblem lcp;
+};
+
+LcpProblem frictionlessLcp(const Scene& scene) {
+  const auto recorder = std::make_shared<RecordingSolver>(oursSettings(LcpMethod::Pgs, 100, true));
+  World world(scene, restingWorldSettings(), recorder);
+  world.step(kStep);
+  return recorder->lcp;
+}
+
+ExactSolve solveExact(const LcpProblem& lcp, LcpMethod method) {
+  ExactSolve r;
+  r.method = lcpMethodName(method);
+  r.rows = static_cast<int>(lcp.b.size());
+  MatX A = lcp.A;
+  if (method == LcpMethod::Pivoting && A.size() > 0) A.diagonal().array() += RestingSettings{}.regularization * A.diagonal().maxCoeff();
+  Stopwatch clock;
+  try {
+    const LcpSolution s = method == LcpMethod::Pivoting ? solveLcpPivoting(A, lcp.b) : solveLcpLemke(A, lcp.b);
+    r.seconds = clock.seconds();
+    r.solved = true;
+    r.pivots = s.iterations;
+    r.residual = s.residual;
+    r.outcome = "solved";
+  } catch (const LcpFailure& e) {
+    r.seconds = clock.seconds();
+    r.outcome = e.what();
+  }
+  return r;
+}
+
 // The box rain of Lab 5's benchmark (boxRain(N, 5): 1 kg boxes and spheres dropped into a fixed
 // container) with three solvers in the same run: Lab 5's sequential impulses (its default
 // Settings: position correction 0.2 beyond 5 mm), our World with the matrix-free cone PGS at
@@ -780,6 +848,41 @@ int main(int argc, char** argv) {
     std::cout << "\nLab 6 benchmark: work against precision, " << wp_cubes << " cubes\n";
     wp_table.print(std::cout);
 
+    // The exact solvers on the pyramids' frictionless LCP (first step); a size is skipped when
+    // its cost, estimated from the smaller one at the pivot limit (pivoting factors A_CC at
+    // each pivot, like n^3 per pivot; Lemke updates an n x 2n tableau, like n^2), exceeds the budget
+    const std::vector<int> exact_rows = options.quick ? std::vector<int>{2, 3} : std::vector<int>{10, 20};
+    const double exact_solve_budget = options.quick ? 5.0 : 120.0;
+    std::vector<std::vector<ExactSolve>> exact(2);
+    Table exact_table({"cubes", "method", "rows (normals)", "pivots", "residual", "time [s]", "outcome"});
+    for (std::size_t s = 0; s < exact_rows.size(); ++s) {
+      const int cubes = exact_rows[s] * (exact_rows[s] + 1) / 2;
+      const LcpProblem lcp = frictionlessLcp(cubePyramid(exact_rows[s]));
+      for (std::size_t m = 0; m < 2; ++m) {
+        const LcpMethod method = m == 0 ? LcpMethod::Pivoting : LcpMethod::Lemke;
+        ExactSolve r;
+        if (s > 0) {
+          const ExactSolve& before = exact[m][s - 1];
+          const double n_ratio = static_cast<double>(lcp.b.size()) / std::max(1, before.rows);
+          const double per_pivot = before.seconds / std::max(1, before.pivots > 0 ? before.pivots : 10 * before.rows);
+          const double estimate = per_pivot * std::pow(n_ratio, m == 0 ? 3.0 : 2.0) * 10.0 * static_cast<double>(lcp.b.size());
+          if (estimate > exact_solve_budget) {
+            r.method = lcpMethodName(method);
+            r.rows = static_cast<int>(lcp.b.size());
+            r.outcome = "not run: up to " + fmt(estimate) + " s at the pivot limit (" + fmt(1e3 * per_pivot) +
+                        " ms per pivot at " + std::to_string(before.rows) + " rows, times (rows ratio)^" + (m == 0 ? "3" : "2") + ")";
+          }
+        }
+        if (r.outcome.empty()) r = solveExact(lcp, method);
+        std::cout << cubes << " cubes, frictionless LCP, " << r.method << ": " << r.outcome << std::endl;
+        exact_table.add({std::to_string(cubes), r.method, std::to_string(r.rows), r.pivots >= 0 ? std::to_string(r.pivots) : "-",
+                         r.solved ? fmt(r.residual) : "-", std::isnan(r.seconds) ? "-" : fmt(r.seconds), r.outcome});
+        exact[m].push_back(r);
+      }
+    }
+    std::cout << "\nLab 6 benchmark: the exact solvers on the pyramids' frictionless LCP (first step)\n";
+    exact_table.print(std::cout);
+
     // The box rain with impulses, with the resting solver and in Bullet
     const std::vector<int> rain_sizes = options.quick ? std::vector<int>{100} : std::vector<int>{100, 500};
     const int rain_steps = options.quick ? 20 : 180;
@@ -817,6 +920,13 @@ int main(int argc, char** argv) {
       out << "\nThe box rain, " << rain_steps << " steps (fastest window).\n\n" << rain_file.rdbuf();
     }
     std::remove(rain_path.c_str());
+    const std::string exact_path = exact_table.saveMarkdown(options.out + "/lab06_bench_exact.md");
+    {
+      std::ifstream exact_file(exact_path);
+      std::ofstream out(path, std::ios::app);
+      out << "\nThe exact solvers on the pyramids' frictionless LCP (first step).\n\n" << exact_file.rdbuf();
+    }
+    std::remove(exact_path.c_str());
 
     // The contact suite: Lab 5's World, Lab 6's World and the peers on the textbook scenes
     std::vector<SuiteColumn> suite_engines = {
@@ -853,6 +963,56 @@ int main(int argc, char** argv) {
     for (const std::string& p : chart_paths) std::cout << "wrote " << p << "\n";
     for (const std::string& p : wp_paths) std::cout << "wrote " << p << "\n";
     for (const std::string& p : suite_paths) std::cout << "wrote " << p << "\n";
+
+    // The goals, from this run's figures
+    std::vector<std::string> goals;
+    {
+      std::string ours;
+      bool met = !options.quick;
+      for (std::size_t m = 0; m < exact.size(); ++m) {
+        for (std::size_t k = 0; k < exact[m].size(); ++k) {
+          const ExactSolve& r = exact[m][k];
+          std::string what = r.outcome;
+          if (r.solved) {
+            what = "solved in " + std::to_string(r.pivots) + " pivots (residual " + fmt(r.residual) + ", " + fmt(r.seconds) + " s)";
+          } else {
+            // The failure's own words, without the exception's prefix and details
+            const std::size_t name = what.find("solveLcp");
+            if (name != std::string::npos) what = what.substr(what.find(": ", name) + 2);
+            what = what.substr(0, what.find(" ("));
+          }
+          met = met && r.solved;
+          ours += (ours.empty() ? "" : "; ") + r.method + " at " +
+                  std::to_string(exact_rows[k] * (exact_rows[k] + 1) / 2) + " cubes " + what;
+        }
+      }
+      goals.push_back("goal: pivoting and Lemke solve the 55- and 210-cube pyramids' frictionless LCP: ours " + ours +
+                      ", target all four solved, " + (met ? "met" : "not met"));
+    }
+    {
+      const std::size_t big = rows.size() - 1;
+      const int cubes = rows[big] * (rows[big] + 1) / 2;
+      std::string ours;
+      double best = INFINITY;
+      for (std::size_t e = 0; e < 2; ++e) {
+        const Run& r = runs[e][big];
+        const bool stands = r.steps == steps && r.finite && r.drift_max <= kStands;
+        if (stands) best = std::min(best, 1e3 * r.per_step());
+        ours += (ours.empty() ? "" : "; ") + engines[e].label + " at " + std::to_string(cubes) + " cubes " +
+                (r.steps > 0 ? fmt(1e3 * r.per_step()) + " ms per step, drift " + fmt(1e3 * r.drift_max) + " mm, " : "") +
+                outcome(r, steps, 2.0 * kPitch * rows[big]);
+      }
+      const bool met = cubes == 465 && best <= 4.0;
+      goals.push_back("goal: 465-cube pyramid stands (drift under 5 cm over 10 s) at no more than 4 ms per step: ours " + ours +
+                      ", target stands at <= 4 ms per step, " + (met ? "met" : "not met"));
+    }
+    {
+      std::ofstream out(path, std::ios::app);
+      out << "\nGoals.\n\n";
+      for (const std::string& g : goals) out << "    " << g << "\n";
+    }
+    std::cout << "\n";
+    for (const std::string& g : goals) std::cout << g << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "bench_06_resting_contact: " << e.what() << "\n";

@@ -18,9 +18,11 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // Sign tests on w and dw need A's scale: below pivot_tolerance * scale is round-off
   // TODO(student): scale = the largest |a_ij|.
   // Drive w_d to zero, changing one contact's set at each blocked step (steps that others
-  // block may bring w_d to zero on the way: a degenerate contact)
-  // TODO(student): while w_d < -options.pivot_tolerance * scale take a step, a pivot: count it, and throw
-  // TODO(student): LcpFailure past max(options.max_iterations, 10 n).
+  // block may bring w_d to zero on the way: a degenerate contact). A w_d within round-off of
+  // the terms it sums (b_d and a_dj f_j, each step adding its own) is zero: large opposing
+  // forces on nearly dependent contacts leave w_d = -1e-11 where it is exactly 0
+  // TODO(student): while w_d < -options.pivot_tolerance * (scale + n (sum_j |a_dj| |f_j| + |b_d|)) take a step, a pivot:
+  // TODO(student): count it, and throw LcpFailure past max(options.max_iterations, 10 n).
   // TODO(student): direction: df_d = 1, df_C solves A_CC df_C = -A_Cd (LcpFailure on an LU pivot of A_CC below
   // TODO(student): pivot_tolerance times its largest entry);
   // TODO(student): df = 0 elsewhere; dw = A df.

@@ -90,8 +90,10 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   free.reserve(static_cast<std::size_t>(n));
   for (Index d = 0; d < n; ++d) {
     // Drive w_d to zero, changing one contact's set at each blocked step (steps that others
-    // block may bring w_d to zero on the way: a degenerate contact)
-    while (s.w(d) < -options.pivot_tolerance * scale) {
+    // block may bring w_d to zero on the way: a degenerate contact). A w_d within round-off of
+    // the terms it sums (b_d and a_dj f_j, each step adding its own) is zero: large opposing
+    // forces on nearly dependent contacts leave w_d = -1e-11 where it is exactly 0
+    while (s.w(d) < -options.pivot_tolerance * (scale + static_cast<double>(n) * (A_abs.row(d).dot(s.f.cwiseAbs()) + std::abs(b(d))))) {
       if (s.iterations >= limit) {
         throw LcpFailure("solveLcpPivoting: pivot limit " + std::to_string(limit) + " reached while driving contact " +
                          std::to_string(d));

@@ -71,3 +71,43 @@ double conditionNumber(const MatX& A) {
 }
 
 }  // namespace physlab::test
+
+namespace physlab::test {
+
+std::vector<VecX> complementarySolutions(const MatX& A, const VecX& b, double tol) {
+  const Index n = A.rows();
+  std::vector<VecX> found;
+  for (unsigned long set = 0; set < (1ul << n); ++set) {
+    std::vector<Index> S;
+    for (Index i = 0; i < n; ++i) {
+      if (set & (1ul << i)) S.push_back(i);
+    }
+    VecX f = VecX::Zero(n);
+    if (!S.empty()) {
+      const Eigen::ColPivHouseholderQR<MatX> qr(A(S, S));
+      if (qr.rank() < static_cast<Index>(S.size())) continue;
+      const VecX f_S = qr.solve(-b(S));
+      for (std::size_t k = 0; k < S.size(); ++k) f(S[k]) = f_S(static_cast<Index>(k));
+    }
+    const VecX w = A * f + b;
+    if (f.minCoeff() >= -tol && w.minCoeff() >= -tol) found.push_back(f);
+  }
+  return found;
+}
+
+PlantedMurty murtyExample(Index n) {
+  PlantedMurty m;
+  m.A = MatX::Identity(n, n);
+  for (Index i = 0; i < n; ++i) {
+    for (Index j = i + 1; j < n; ++j) m.A(i, j) = 2.0;
+  }
+  m.b = VecX::Zero(n);
+  for (Index i = 0; i < n; ++i) {
+    for (Index j = i; j < n; ++j) m.b(i) -= std::ldexp(1.0, static_cast<int>(j) + 1);
+  }
+  m.f = VecX::Zero(n);
+  m.f(n - 1) = std::ldexp(1.0, static_cast<int>(n));
+  return m;
+}
+
+}  // namespace physlab::test

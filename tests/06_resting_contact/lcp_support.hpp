@@ -4,6 +4,8 @@
 // time in every test file that includes this header.
 #pragma once
 
+#include <vector>
+
 #include "physlab/lcp.hpp"
 #include "support.hpp"
 
@@ -39,5 +41,25 @@ double complementarity(const MatX& A, const VecX& b, const VecX& f);
 
 /// The 2-norm condition number of A (ratio of extreme singular values).
 double conditionNumber(const MatX& A);
+
+}  // namespace physlab::test
+
+namespace physlab::test {
+
+/// Every complementary basic solution of LCP(A, b), found by enumerating the 2^n complementary
+/// bases (n <= 16): for each set S, f_S solves A_SS f_S = -b_S (skipped when A_SS is singular),
+/// f = 0 elsewhere, and the pair counts when f >= -tol and w = A f + b >= -tol. The oracle of
+/// the LCP test set, apart from any pivoting rule: a P-matrix gives exactly one.
+std::vector<VecX> complementarySolutions(const MatX& A, const VecX& b, double tol);
+
+/// Murty's exponential example for pivoting methods (after K. G. Murty, "Computational
+/// complexity of complementary pivot methods", 1978), in our index order: A upper triangular
+/// with 1 on the diagonal and 2 above it (a P-matrix), b_i = -(2^{i+1} + 2^{i+2} + ... + 2^n)
+/// for i = 0..n-1 (0-based). Its unique solution has f_{n-1} = 2^n and every other f_i = 0.
+struct PlantedMurty {
+  MatX A;
+  VecX b, f;
+};
+PlantedMurty murtyExample(Index n);
 
 }  // namespace physlab::test

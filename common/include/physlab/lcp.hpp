@@ -90,7 +90,8 @@ double lcpResidual(const MatX& A, const VecX& b, const VecX& f);
 ///@{
 
 /// Dantzig's pivoting method as Baraff describes it: contacts are added one at a time, in index
-/// order; while the new contact's \f$w_d < 0\f$, raise \f$f_d\f$ along the direction that keeps every
+/// order; while the new contact's \f$w_d < 0\f$ (beyond round-off of the terms it sums: below
+/// \f$-\text{pivot\_tolerance}\,(\max|a_{ij}| + n(\sum_j |a_{dj}||f_j| + |b_d|))\f$), raise \f$f_d\f$ along the direction that keeps every
 /// clamped contact at \f$w = 0\f$ and every free contact at \f$f = 0\f$, by the largest step that keeps
 /// all \f$f \ge 0\f$ and \f$w \ge 0\f$; the contact that blocks the step changes set (d itself blocking
 /// ends the drive; ties go to d). Requires A symmetric positive semidefinite, singular ones (a
@@ -108,9 +109,18 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
 
 /// Lemke's complementary pivoting with covering vector \f$e = (1, \dots, 1)\f$: returns f = 0 when
 /// \f$b \ge 0\f$, else pivots on the tableau \f$w - A f - e z_0 = b\f$ from the most negative
-/// \f$b_i\f$, choosing the entering variable as the complement of the one that left and the
-/// leaving one by the minimum ratio test (ties broken lexicographically or by lowest index),
-/// until \f$z_0\f$ leaves (when \f$z_0\f$ ties for leaving, it leaves). Throws LcpFailure("... ray
+/// \f$b_i\f$ (ties: the last such row), choosing the entering variable as the complement of the
+/// one that left and the leaving one by the lexicographic minimum ratio test, until \f$z_0\f$
+/// leaves (when \f$z_0\f$ ties for leaving, it leaves). The test: with the tableau's right-hand
+/// side \f$\bar b = B^{-1} b\f$, its first n columns \f$B^{-1}\f$ (they start as I) and the entering
+/// column \f$\bar a = B^{-1} a_e\f$, the leaving row r is the lexicographic minimum of
+/// \f[ \frac{1}{\bar a_i}\,\big(\bar b_i,\ (B^{-1})_{i0},\ \dots,\ (B^{-1})_{i,n-1}\big) \quad\text{over } \bar a_i > 0, \f]
+/// compared entry by entry (the ratios tie within pivot_tolerance, relative; later entries
+/// within pivot_tolerance). The rows of \f$B^{-1}\f$ are independent, so no two of these vectors
+/// are equal and the minimum is unique; each row of \f$(\bar b, B^{-1})\f$ stays lexicographically
+/// positive: the plain ratio test on the perturbed \f$b + (\varepsilon, \varepsilon^2, \dots, \varepsilon^n)\f$
+/// for small \f$\varepsilon > 0\f$, a problem with no ties: no almost-complementary basis repeats, and
+/// the method ends, at a solution or on a ray, after finitely many pivots (in exact arithmetic). Throws LcpFailure("... ray
 /// termination ...") when no variable can leave (the LCP has no solution Lemke can find; on
 /// positive semidefinite or P-matrices, it has none at all) and on reaching the pivot limit.
 /// InvalidInput as validateLcp().
