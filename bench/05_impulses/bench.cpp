@@ -290,7 +290,7 @@ Table timewarpBench(const std::vector<int>& sizes, int windows) {
                                   "Lab 5 World, fixed step (h = 1 ms)"};
     for (int m = 0; m < 3; ++m) {
       table.add({std::to_string(n), names[m], fmt(1e3 * best[m]), fmt(best[m] / best[0]), fmt(error[m], 2),
-                 m == 2 ? "sort and sweep" : std::to_string(checks[m]), std::to_string(advanced[m]), m == 0 ? rollbacks : "-"});
+                 m == 2 ? "incremental tree" : std::to_string(checks[m]), std::to_string(advanced[m]), m == 0 ? rollbacks : "-"});
     }
     std::cout << "Timewarp, N = " << n << ": best of " << windows << " windows done\n";
   }

@@ -115,7 +115,7 @@ struct Settings {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);  ///< uniform gravitational acceleration, world frame [m/s^2]
   double penalty_k = 1e4;             ///< penalty spring stiffness k [N/m]
   double penalty_d = 0.0;             ///< penalty damping d [N s/m]
-  bool use_broad_phase = true;        ///< sort and sweep before the narrow phase (else every pair)
+  bool use_broad_phase = true;        ///< Lab 4's incremental AABB tree before the narrow phase (else every pair)
   double position_correction = 0.2;   ///< impulse methods: fraction of each pair's overlap beyond the slop removed per step by moving the bodies apart, in [0, 1] (0: off)
   double slop = 0.001;                ///< overlap the position correction leaves alone [m]
 

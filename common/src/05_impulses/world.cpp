@@ -119,7 +119,7 @@ std::string Settings::toString() const {
       << " restitution_threshold=" << restitution_threshold << " warm_start=" << (warm_start ? "on" : "off")
       << " gravity=(" << gravity.x() << ", " << gravity.y() << ", " << gravity.z() << ")"
       << " penalty_k=" << penalty_k << " penalty_d=" << penalty_d
-      << " broad_phase=" << (use_broad_phase ? "sort and sweep" : "all pairs")
+      << " broad_phase=" << (use_broad_phase ? "incremental tree" : "all pairs")
       << " position_correction=" << position_correction << " slop=" << slop;
   return out.str();
 }
@@ -143,7 +143,7 @@ World::World(Scene scene, Settings settings, std::shared_ptr<RestingContactSolve
     if (bodies_[i].fixed) states_[i].P = states_[i].L = Vec3::Zero();
     (isPlane(bodies_[i]) ? planes_ : bounded_).push_back(i);
   }
-  broad_phase_ = std::make_unique<SweepAndPrune>();
+  broad_phase_ = std::make_unique<IncrementalBroadPhase>();
 }
 
 BodyState BodyState::moving(const BodyDescription& body, const Vec3& x, const Quat& q, const Vec3& v,
