@@ -211,22 +211,12 @@ class StageResult:
     notes: list = field(default_factory=list)
 
 
-SECTIONS_RE = re.compile(r"^// Lab \d+, sections? ([0-9, and-]+):")
-
-
 @functools.lru_cache(maxsize=None)
 def section_files(stage: str) -> dict:
     """Handout section -> the lab file (name without .cpp) that holds its functions, read from the
     first line of each stub ("// Lab 4, sections 2-4 and 7: ..."). The instructor's stubs, never
     a submission's files."""
-    table = {}
-    for path in sorted((ROOT / "labs" / stage).glob("*.cpp")):
-        first = path.read_text(encoding="utf-8", errors="replace").split("\n", 1)[0]
-        m = SECTIONS_RE.match(first)
-        for low, high in re.findall(r"(\d+)(?:-(\d+))?", m.group(1) if m else ""):
-            for number in range(int(low), int(high or low) + 1):
-                table[number] = path.stem
-    return table
+    return course_file.section_table(ROOT, stage)
 
 
 def tag_problems(results: list) -> list:
