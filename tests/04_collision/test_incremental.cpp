@@ -319,6 +319,9 @@ TEST_CASE("incremental: the sibling is the one of least surface-area cost (hand-
   CHECK(tree.pickSibling(cuboid(3.5, 0, 0, 4.5, 1, 1)) == leafOf(1));
   // L = [-3,8]x[0,1]^2 spans both: the root costs 2 A(L) = 92, each leaf 2 (46 - 22) + 46 = 94
   CHECK(tree.pickSibling(cuboid(-3, 0, 0, 8, 1, 1)) == tree.root());
+  // L = [0,1]^2 x [1,5], on top of A: the root costs 2 x 70 = 140, A 2 (70 - 22) + 22 = 118 and
+  // B 96 + 70 = 166; the root is cheaper than one child only, so the search goes down to A
+  CHECK(tree.pickSibling(cuboid(0, 0, 1, 1, 1, 5)) == leafOf(0));
   // Inserting [1,2]x[0,1]^2 makes it A's sibling: their parent has exactly these two children
   const int c = bp.add(cuboid(1, 0, 0, 2, 1, 1));
   bp.update(pairs);
