@@ -13,6 +13,22 @@ using namespace physlab;
 
 namespace {
 
+// Steps `sys` from state X with `method` at h [s] for `steps` steps, a frame every `every` steps
+// from t = 0, into a replay titled `title` with `settings` shown.
+Replay film(const ParticleSystem& sys, VecX X, Method method, double h, int steps, int every, const char* title,
+            const char* settings) {
+  Replay replay;
+  replay.title = title;
+  replay.settings = settings;
+  replay.particle_count = static_cast<std::uint32_t>(sys.count());
+  Integrator integrator(method);
+  for (int n = 0; n <= steps; ++n) {
+    if (n > 0) integrator.step(sys, X, h);
+    if (n % every == 0) recordParticles(replay, n * h, positions(X), kineticEnergy(sys, X), potentialEnergy(sys, X));
+  }
+  return replay;
+}
+
 // A sun (mass 1) and three planets (10^-3 each) on circular orbits of radius 1, 1.6 and 2.4 in the
 // plane z = 0.5, G = 1 (scaled units: the inner year is 2 pi), softening 0.01. Velocity Verlet,
 // h = 0.002, 20 time units, 50 frames a unit.
@@ -31,18 +47,9 @@ Replay orbits() {
     const double speed = std::sqrt(G * sun / radii[k]);
     v.col(k + 1).head<2>() << -speed * std::sin(angle), speed * std::cos(angle);
   }
-  VecX X = sys.makeState(x, v);
-  Replay replay;
-  replay.title = "Lab 1: three planets round a sun, N-body gravity";
-  replay.settings = "velocity Verlet, h = 0.002, G = 1, softening 0.01, masses 1 and 3 x 0.001";
-  replay.particle_count = 4;
-  Integrator verlet(Method::Verlet);
-  const double h = 0.002;
-  for (int n = 0; n <= 10000; ++n) {
-    if (n > 0) verlet.step(sys, X, h);
-    if (n % 10 == 0) recordParticles(replay, n * h, positions(X), kineticEnergy(sys, X), potentialEnergy(sys, X));
-  }
-  return replay;
+  return film(sys, sys.makeState(x, v), Method::Verlet, 0.002, 10000, 10,
+              "Lab 1: three planets round a sun, N-body gravity",
+              "velocity Verlet, h = 0.002, G = 1, softening 0.01, masses 1 and 3 x 0.001");
 }
 
 // 150 boids (section 6) in a 3 m cube at z in [0, 3], headings within 60 degrees of +x at 1 m/s;
@@ -60,18 +67,8 @@ Replay flock() {
   }
   ParticleSystem sys(VecX::Ones(n));
   sys.addForce(std::make_shared<Boids>(1.2, 0.02, 2.0, 1.5));
-  VecX X = sys.makeState(x, v);
-  Replay replay;
-  replay.title = "Lab 1: a flock of 150 boids";
-  replay.settings = "symplectic Euler, h = 0.02, R = 1.2, w_s = 0.02, w_a = 2, w_c = 1.5";
-  replay.particle_count = static_cast<std::uint32_t>(n);
-  Integrator integrator(Method::SymplecticEuler);
-  const double h = 0.02;
-  for (int k = 0; k <= 400; ++k) {
-    if (k > 0) integrator.step(sys, X, h);
-    if (k % 2 == 0) recordParticles(replay, k * h, positions(X), kineticEnergy(sys, X), potentialEnergy(sys, X));
-  }
-  return replay;
+  return film(sys, sys.makeState(x, v), Method::SymplecticEuler, 0.02, 400, 2, "Lab 1: a flock of 150 boids",
+              "symplectic Euler, h = 0.02, R = 1.2, w_s = 0.02, w_a = 2, w_c = 1.5");
 }
 
 }  // namespace
