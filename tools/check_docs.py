@@ -17,14 +17,15 @@ import argparse
 import concurrent.futures
 import html.parser
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
-BROWSERS = ("chromium", "chromium-browser")
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import headless  # noqa: E402
+
 # Doxygen writes MathJax 2 input as \( \) inline and \[ \] displayed
 FORMULA = re.compile(r"\\\(|\\\[")
 # a rule row; Doxygen turns its "---" into an em dash when the table did not render
@@ -88,24 +89,13 @@ def broken_tables(paragraphs):
     return found
 
 
-def find_browser():
-    for name in BROWSERS:
-        path = shutil.which(name)
-        if path:
-            return path
-    return None
-
-
 def rendered_dom(browser, page, profile, budget_ms):
     """The page's DOM after its scripts ran, from headless Chromium with the network off."""
-    cmd = [browser, "--headless", "--disable-gpu", "--no-sandbox", "--no-first-run",
-           "--allow-file-access-from-files", "--host-resolver-rules=MAP * ~NOTFOUND",
-           f"--user-data-dir={profile}", f"--virtual-time-budget={budget_ms}", "--dump-dom",
-           page.resolve().as_uri()]
-    result = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
-    if result.returncode != 0 or not result.stdout.strip():
-        raise RuntimeError(f"chromium failed (status {result.returncode}): {result.stderr.strip()[-300:]}")
-    return result.stdout
+    dom = headless.run(browser, page, Path(profile), ["--allow-file-access-from-files", "--dump-dom"],
+                       budget_ms=budget_ms, timeout=120)
+    if not dom.strip():
+        raise RuntimeError("chromium returned an empty page")
+    return dom
 
 
 def mathjax_problems(dom):
@@ -150,7 +140,7 @@ def main():
         if FORMULA.search(text) and any(page.match(glob) for glob in args.formulas.split(",")):
             formula_pages.append(page)
 
-    browser = find_browser()
+    browser = headless.find_browser()
     if browser is None:
         mathjax = "skipped: chromium not installed (apt-get install chromium)"
     else:

@@ -32,7 +32,7 @@ import zlib
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from check_docs import find_browser  # noqa: E402  (the same chromium lookup as the docs check)
+import headless  # noqa: E402
 from view import ORBIT, THREE, ReplayError, parse_replay  # noqa: E402
 
 WINDOW = (900, 700)
@@ -42,18 +42,11 @@ BROWSER_INITIATOR = "not an origin"
 
 
 def chromium(browser, page, profile, extra, fragment="", virtual_time=True):
-    """Runs headless Chromium on page#fragment with the network blocked; returns its stdout. With
-    virtual_time, timers run ahead for 4 s of page time; without, the page's clock is the wall's."""
-    budget = ["--virtual-time-budget=4000"] if virtual_time else []
-    cmd = [browser, "--headless", "--no-sandbox", "--no-first-run", "--disable-gpu", "--enable-unsafe-swiftshader",
-           "--host-resolver-rules=MAP * ~NOTFOUND", "--proxy-server=http://127.0.0.1:9",
-           "--disable-background-networking", "--disable-component-update", "--disable-sync",
-           "--disable-default-apps", "--disable-domain-reliability", f"--user-data-dir={profile}",
-           f"--window-size={WINDOW[0]},{WINDOW[1]}", *budget, *extra, page.resolve().as_uri() + fragment]
-    result = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    if result.returncode != 0:
-        raise RuntimeError(f"chromium failed (status {result.returncode}): {result.stderr.strip()[-300:]}")
-    return result.stdout
+    """Runs headless Chromium on page#fragment, offline, in the viewer's window size; returns its
+    stdout. With virtual_time, timers run ahead for 4 s of page time; without, the page's clock
+    is the wall's."""
+    return headless.run(browser, page, profile, [f"--window-size={WINDOW[0]},{WINDOW[1]}", *extra], fragment,
+                        4000 if virtual_time else None)
 
 
 def page_requests(netlog):
@@ -177,7 +170,7 @@ def main():
     parser.add_argument("pages", nargs="+", type=Path)
     parser.add_argument("--measure", action="store_true", help="also print the time each page takes per frame")
     args = parser.parse_args()
-    browser = find_browser()
+    browser = headless.find_browser()
     if browser is None:
         print("check_view: skipped: chromium not installed (apt-get install chromium)")
         return 0
