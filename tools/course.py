@@ -12,6 +12,7 @@ tree at the points of their tags: today's grading exactly.
 """
 
 import json
+import math
 import re
 import shutil
 import sys
@@ -177,13 +178,24 @@ def scale(lab: Lab, section_points: dict, where: str) -> None:
             raise CourseError(f"{where}: section_points add up to {fixed:g}, not the lab's {lab.points:g} points, "
                               f"and no other section is left to take the rest")
         factor = (lab.points - fixed) / rest_raw if rest_raw else 0.0
-    for t in rest:
-        t.points = round(t.raw * factor, 4)
+    apportion(rest, factor * rest_raw)
     for s, total in section_points.items():
-        raw = sum(t.raw for t in groups[s])
-        for t in groups[s]:
-            t.points = round(t.raw * total / raw, 4)
+        apportion(groups[s], total)
 
+
+def apportion(tests: list, total: float) -> None:
+    """Shares `total` among `tests` in proportion to their tags' points, each share a whole number
+    of 1e-4 points and the shares adding up to `total` to 1e-4 exactly (largest remainder): rounding
+    each share alone would let a lab of 100 points grade out of 100.0001."""
+    raw = sum(t.raw for t in tests)
+    units = round(total * 10000)
+    exact = [t.raw * units / raw if raw else 0.0 for t in tests]
+    shares = [math.floor(e) for e in exact]
+    by_remainder = sorted(range(len(tests)), key=lambda i: shares[i] - exact[i])
+    for i in by_remainder[:units - sum(shares)]:
+        shares[i] += 1
+    for t, share in zip(tests, shares):
+        t.points = share / 10000
 
 def default(root: Path = ROOT) -> Course:
     """Every lab, section and test of the tree at their tags' points."""

@@ -883,8 +883,9 @@ def gradescope_json(results: list, elapsed: float) -> dict:
             })
     notes = [clean(f"lab {r.stage}: {n}") for r in results for n in r.notes]
     return {
-        "score": sum(t["score"] for t in tests),
-        "max_score": sum(t["max_score"] for t in tests),
+        # Points are multiples of 1e-4 (a course's rescaling): sums rounded there, not 200.00000000003
+        "score": round(sum(t["score"] for t in tests), 4),
+        "max_score": round(sum(t["max_score"] for t in tests), 4),
         "execution_time": round(elapsed, 2),
         "output": "\n".join(["Per-test results below; the full report is report.txt."] + notes),
         "tests": tests,

@@ -86,7 +86,17 @@ class Scaling(Tree):
         c = self.parse("[labs.1]\npoints = 20\nsection_points = { 3 = 6 }\n")
         self.assertAlmostEqual(c.test("01_alpha", 'a "quoted" step').points, 1.5)
         self.assertAlmostEqual(c.test("01_alpha", "a scene of forces and steps").points, 4.5)
-        self.assertAlmostEqual(c.test("01_alpha", "gravity pulls down").points, round(2 * 14 / 6, 4))
+        self.assertAlmostEqual(c.test("01_alpha", "gravity pulls down").points, 2 * 14 / 6, delta=1e-4)
+
+    def test_shares_add_up_to_the_points_exactly(self):
+        # 14 points in thirds: 4.6667 + 4.6667 + 4.6666, never 14.0001 (each share rounded alone)
+        c = self.parse("[labs.1]\npoints = 20\nsection_points = { 3 = 6 }\n")
+        rest = [t.points for t in c.labs["01_alpha"].tests.values() if t.group != 3]
+        self.assertEqual(round(sum(rest) * 10000), 140000)
+        self.assertEqual(sorted(round(p * 10000) for p in rest), [46666, 46667, 46667])
+        for points in (100, 7, 0.0001):  # a fixed lab total, one that divides badly, one unit
+            lab = self.parse(f"[labs.01]\npoints = {points}\n").labs["01_alpha"]
+            self.assertEqual(round(sum(t.points for t in lab.tests.values()) * 10000), round(points * 10000))
 
     def test_section_points_without_lab_points_keep_the_rest(self):
         c = self.parse("[labs.01_alpha]\nsection_points = { 3 = 8 }\n")
