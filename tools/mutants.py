@@ -93,12 +93,23 @@ def restore(labs: Path, files: list) -> None:
         shutil.copyfile(SOLUTIONS / rel, labs / rel)
 
 
-def apply_patch(labs: Path, patch: Path) -> subprocess.CompletedProcess:
+def apply_patch(labs: Path, patch: Path, check_only: bool = False) -> subprocess.CompletedProcess:
     # -p2 strips "a/solutions/". The ceiling keeps git from treating the scratch folder as part
     # of an enclosing repository, so paths are taken relative to it.
     env = dict(os.environ, GIT_CEILING_DIRECTORIES=str(labs.parent))
-    return subprocess.run(["git", "apply", "-p2", str(patch)], cwd=labs, env=env,
-                          capture_output=True, text=True)
+    return subprocess.run(["git", "apply", "-p2", *(["--check"] if check_only else []), str(patch)], cwd=labs,
+                          env=env, capture_output=True, text=True)
+
+
+def stale(mutants: list) -> list:
+    """The mutants whose patch no longer applies to solutions/ (a reference changed under them),
+    as "lab/name: git's message" lines; checked without building anything."""
+    found = []
+    for m in mutants:
+        applied = apply_patch(SOLUTIONS, m.path, check_only=True)
+        if applied.returncode != 0:
+            found.append(f"{m.stage}/{m.path.name}: does not apply: {applied.stderr.strip()[:OUTPUT_LIMIT]}")
+    return found
 
 
 def configure(build: Path, labs: Path) -> None:
@@ -240,9 +251,16 @@ def main() -> int:
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     parser.add_argument("--timeout", type=float, default=300.0,
                         help="seconds one run of a lab's tests may take (a hang counts as caught)")
+    parser.add_argument("--applies", action="store_true",
+                        help="only check that every patch applies to solutions/ (seconds, no build)")
     args = parser.parse_args()
 
     stages = select_stages(args.labs)
+    if args.applies:
+        mutants = load_mutants(stages)
+        problems = stale(mutants)
+        print("\n".join(problems + [f"mutants: {len(mutants) - len(problems)} of {len(mutants)} patches apply"]))
+        return 1 if problems else 0
     build = args.build.resolve()
     labs = build / "scratch" / "labs"
     seeds = list(range(1, args.seeds + 1))
