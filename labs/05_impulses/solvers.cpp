@@ -14,17 +14,27 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
   // TODO(student): a body's inv_mass < 0 or not finite; c.a or c.b outside [0, bodies.size()); |c.n| off 1 by more than 1e-9
   // TODO(student): or NaN; c.p not finite; c.epsilon outside [0, 1]; c.mu < 0 or not finite; c.v_rel_minus not finite;
   // TODO(student): c.j < 0 or not finite; c.j_t not finite. Build the message only when throwing (no strings otherwise).
+  // Prepare once per solve what no sweep changes: each point's lever arms and K matrix
+  // TODO(student): for every contact c.r_a = p - x_A, c.r_b = p - x_B and
+  // TODO(student): c.K_matrix = (1/m_A + 1/m_B) 1 - [r_a]x I_A^-1 [r_a]x - [r_b]x I_B^-1 [r_b]x ([r]x y = r x y);
+  // TODO(student): d . (K_matrix d) must equal inverseEffectiveMass(A, B, p, d): test yours against it.
   // Warm start: apply the impulses carried over from the last step
-  // TODO(student): applyImpulse(A, B, p, c.j n + c.j_t) for every contact before the first sweep (whatever settings.warm_start says).
+  // TODO(student): apply c.j n + c.j_t at every point before the first sweep (whatever settings.warm_start says), as
+  // TODO(student): applyImpulse does but with the prepared r_a, r_b: the sweeps below call none of the section 2-4 functions.
   // Aim at v_rel+ = -epsilon v_rel-, decided before the solve (resting points aim at 0), and
   // clamp the accumulated total, not the correction: j >= 0, so a sweep may take some back
   // TODO(student): sweep the contacts in order, with the velocities the sweep has left so far; target = -c.epsilon c.v_rel_minus
   // TODO(student): when c.v_rel_minus < -settings.restitution_threshold, else 0 (never from the v_rel you see now).
-  // TODO(student): j = max(0, c.j + (target - v_rel) / K); apply (j - c.j) n; its velocity change is K |j - c.j|; store c.j = j.
-  // Stop the sliding, keeping the accumulated friction inside the cone |j_t| <= mu j of the
-  // normal impulse just found
-  // TODO(student): when mu > 0: j_t = c.j_t + frictionImpulse(..., infinity), shortened to mu c.j (the new c.j); apply j_t - c.j_t;
-  // TODO(student): its velocity change is |dj_t| times inverseEffectiveMass along dj_t / |dj_t|.
+  // TODO(student): u = relative velocity of the points (prepared r), K = n . K_matrix n, j = max(0, c.j + (target - n . u) / K);
+  // TODO(student): dj = j - c.j; its velocity change is K |dj|; store c.j = j.
+  // Stop the sliding left after this change (u + K n dj: the bodies move only once, below),
+  // keeping the accumulated friction inside the cone |j_t| <= mu j of the normal impulse just
+  // found (a cone of radius 0 takes everything back)
+  // TODO(student): when mu > 0: from u + dj K_matrix n, the stopping impulse -(|u_t| / K_t) t with t = u_t / |u_t|,
+  // TODO(student): K_t = t . K_matrix t (zero when u_t = 0); j_t = c.j_t + it, shortened to mu c.j (the new c.j);
+  // TODO(student): dj_t = j_t - c.j_t; its velocity change is (dj_t . K_matrix dj_t) / |dj_t|.
+  // Apply the point's normal and friction changes together
+  // TODO(student): apply dj n + dj_t once (the same change as applying dj n, then dj_t).
   // Converged when no point's velocity changed by more than the tolerance in a whole sweep
   // TODO(student): stop when the largest change of the sweep is <= settings.tolerance, or after settings.iterations sweeps;
   // TODO(student): return the sweeps made, the quiet last one included (no contacts: 1).

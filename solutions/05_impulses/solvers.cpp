@@ -49,13 +49,53 @@ void requireSolvable(const std::vector<ContactBody>& bodies, const std::vector<C
   }
 }
 
+// The point's lever arms and its inverse effective mass matrix, fixed while the velocities change:
+// an impulse J at p changes the relative velocity of the touching points by K J, with
+// K = (m_A^-1 + m_B^-1) 1 - [r_A]x I_A^-1 [r_A]x - [r_B]x I_B^-1 [r_B]x ([r]x y = r x y).
+void prepare(const ContactBody& A, const ContactBody& B, Contact& c) {
+  c.r_a = c.p - A.x;
+  c.r_b = c.p - B.x;
+  const auto cross = [](const Vec3& r) {
+    Mat3 m;
+    m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+    return m;
+  };
+  const Mat3 ra = cross(c.r_a), rb = cross(c.r_b);
+  c.K_matrix = (A.inv_mass + B.inv_mass) * Mat3::Identity() - ra * A.I_inv_world * ra - rb * B.I_inv_world * rb;
+}
+
+// relativeVelocity() with the prepared lever arms.
+Vec3 relativeVelocityAt(const ContactBody& A, const ContactBody& B, const Contact& c) {
+  return (A.v + A.omega.cross(c.r_a)) - (B.v + B.omega.cross(c.r_b));
+}
+
+// applyImpulse() with the prepared lever arms (the input was checked before the first change).
+void applyAt(ContactBody& A, ContactBody& B, const Contact& c, const Vec3& J) {
+  A.v += A.inv_mass * J;
+  A.omega += A.I_inv_world * c.r_a.cross(J);
+  B.v -= B.inv_mass * J;
+  B.omega -= B.I_inv_world * c.r_b.cross(J);
+}
+
+// frictionImpulse() without a bound, for the relative velocity u, with the prepared K: the
+// impulse along -t that stops the sliding speed |u_t|, K_t = t . K t.
+Vec3 stopSliding(const Contact& c, const Vec3& u) {
+  const Vec3 u_t = u - u.dot(c.n) * c.n;
+  const double speed = u_t.norm();
+  if (speed == 0.0) return Vec3::Zero();
+  const Vec3 t = u_t / speed;
+  return -(speed / t.dot(c.K_matrix * t)) * t;
+}
+
 }  // namespace
 
 int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const Settings& settings) {
   // Refuse bad bodies and contacts before anything changes
   requireSolvable(bodies, contacts, "solveSequential");
+  // Prepare once per solve what no sweep changes: each point's lever arms and K matrix
+  for (Contact& c : contacts) prepare(bodies[c.a], bodies[c.b], c);
   // Warm start: apply the impulses carried over from the last step
-  for (const Contact& c : contacts) applyImpulse(bodies[c.a], bodies[c.b], c.p, c.j * c.n + c.j_t);
+  for (const Contact& c : contacts) applyAt(bodies[c.a], bodies[c.b], c, c.j * c.n + c.j_t);
   int sweeps = 0;
   while (sweeps < settings.iterations) {
     ++sweeps;
@@ -65,22 +105,27 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
       // Aim at v_rel+ = -epsilon v_rel-, decided before the solve (resting points aim at 0), and
       // clamp the accumulated total, not the correction: j >= 0, so a sweep may take some back
       const double v_target = c.v_rel_minus < -settings.restitution_threshold ? -c.epsilon * c.v_rel_minus : 0.0;
-      const double v_rel = c.n.dot(relativeVelocity(A, B, c.p));
-      const double K = inverseEffectiveMass(A, B, c.p, c.n);
-      const double j = std::max(0.0, c.j + (v_target - v_rel) / K);
-      applyImpulse(A, B, c.p, (j - c.j) * c.n);
-      double change = K * std::abs(j - c.j);
+      const Vec3 u = relativeVelocityAt(A, B, c);
+      const Vec3 Kn = c.K_matrix * c.n;
+      const double K = c.n.dot(Kn);
+      const double j = std::max(0.0, c.j + (v_target - c.n.dot(u)) / K);
+      const double dj = j - c.j;
+      double change = K * std::abs(dj);
       c.j = j;
-      // Stop the sliding, keeping the accumulated friction inside the cone |j_t| <= mu j of the
-      // normal impulse just found
+      Vec3 J = dj * c.n;
+      // Stop the sliding left after this change (u + K n dj: the bodies move only once, below),
+      // keeping the accumulated friction inside the cone |j_t| <= mu j of the normal impulse just
+      // found (a cone of radius 0 takes everything back)
       if (c.mu > 0.0) {
-        const Vec3 j_t = clampToCone(c.j_t + frictionImpulse(A, B, c.p, c.n, kUnlimited), c.mu * c.j);
+        const Vec3 j_t = c.j > 0.0 ? clampToCone(c.j_t + stopSliding(c, u + dj * Kn), c.mu * c.j) : Vec3::Zero();
         const Vec3 dj_t = j_t - c.j_t;
-        applyImpulse(A, B, c.p, dj_t);
+        J += dj_t;
         c.j_t = j_t;
         const double size = dj_t.norm();
-        if (size > 0.0) change = std::max(change, size * inverseEffectiveMass(A, B, c.p, dj_t / size));
+        if (size > 0.0) change = std::max(change, dj_t.dot(c.K_matrix * dj_t) / size);
       }
+      // Apply the point's normal and friction changes together
+      applyAt(A, B, c, J);
       largest = std::max(largest, change);
     }
     // Converged when no point's velocity changed by more than the tolerance in a whole sweep

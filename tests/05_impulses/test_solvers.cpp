@@ -856,6 +856,56 @@ TEST_CASE("sequential and simultaneous impulses: approaching at exactly the rest
   }
 }
 
+TEST_CASE("sequential impulses: each point leaves the solve with its lever arms and K matrix, whatever it arrived with", "[lab05][pts=1][sec=5]") {
+  // Fixed: a sphere (m = 2 kg, r = 0.2 m, I = 2/5 m r^2) on the ground, as A and as B. Its lever
+  // arm is -r n, so K = diag(1/m + r^2/I, 1/m + r^2/I, 1/m) = diag(3.5/m, 3.5/m, 1/m) by hand.
+  for (const bool ground_as_a : {false, true}) {
+    FixedSphere s = fixedSphereOnGround(Vec3(1.0, 0.0, -1.0), 0.5, 0.3, ground_as_a);
+    INFO(sideName(ground_as_a));
+    s.contacts[0].r_a = s.contacts[0].r_b = Vec3::Constant(7.0);  // stale values the solve must replace
+    s.contacts[0].K_matrix = Mat3::Constant(-1.0);
+    solveSequential(s.bodies, s.contacts, Settings{});
+    const Contact& c = s.contacts[0];
+    const Vec3 sphere_arm(0.0, 0.0, -kSphereRadius);
+    CHECK(c.r_a == (ground_as_a ? Vec3::Zero() : sphere_arm));  // p - x: exact
+    CHECK(c.r_b == (ground_as_a ? sphere_arm : Vec3::Zero()));
+    const Mat3 K = Vec3(3.5, 3.5, 1.0).asDiagonal() * (1.0 / kSphereMass);
+    CHECK((c.K_matrix - K).norm() <= 1e-14);  // a few roundings of numbers of order 1
+  }
+  // Random: two moving bodies with random inertia tensors; K_matrix d must be the change of
+  // pdot_A - pdot_B that a unit impulse along d makes (oracleApply), for random d, and d . K d the
+  // section 2 denominator (oracleK). The solve moves velocities only, so x and I^-1 are those on entry.
+  for (int trial = 0; trial < 20; ++trial) {
+    RandomPair pair = randomPair(trial % 4 == 3);
+    std::vector<ContactBody> bodies = {pair.A, pair.B};
+    Contact c;
+    c.a = 0;
+    c.b = 1;
+    c.p = pair.p;
+    c.n = pair.n;
+    c.epsilon = 0.5;
+    c.mu = 0.4;
+    c.v_rel_minus = vRel(pair);
+    c.r_a = c.r_b = randomVec3(3.0);
+    c.K_matrix = Mat3::Random();
+    std::vector<Contact> contacts = {c};
+    solveSequential(bodies, contacts, Settings{});
+    const Contact& done = contacts[0];
+    CHECK(done.r_a == pair.p - pair.A.x);
+    CHECK(done.r_b == pair.p - pair.B.x);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 d = randomVec3(1.0).normalized();
+      ContactBody A = pair.A, B = pair.B;
+      oracleApply(A, B, pair.p, d);
+      const Vec3 change = oracleRelativeVelocity(A, B, pair.p) - oracleRelativeVelocity(pair.A, pair.B, pair.p);
+      const double scale = oracleK(pair.A, pair.B, pair.p, d);
+      // Sums of a few products of order-1 numbers: round-off relative to K's size.
+      CHECK((done.K_matrix * d - change).norm() <= 1e-12 * (1.0 + done.K_matrix.norm()));
+      CHECK(d.dot(done.K_matrix * d) == Approx(scale).epsilon(1e-12));
+    }
+  }
+}
+
 TEST_CASE("sequential and simultaneous impulses: a sphere sliding onto the ground takes j and mu j by hand, as A or as B", "[lab05][pts=1][sec=5][sec=6]") {
   // m = 2 kg, r = 0.2 m, I = 2/5 m r^2, arriving at v = (2, 0, -1) m/s without spin; epsilon 0.5,
   // mu 0.1. Normal: K = 1/m, j = (1 + epsilon) m 1 = 3 N s, v_z = +0.5. Friction: stopping the slip

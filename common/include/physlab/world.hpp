@@ -161,6 +161,15 @@ struct Contact {
   ContactKind kind = ContactKind::Separating;  ///< what classify found
   double j = 0.0;                 ///< accumulated normal impulse, >= 0 [N s]
   Vec3 j_t = Vec3::Zero();        ///< accumulated friction impulse, tangent plane, \f$|j_t| \le \mu j\f$ [N s]
+  /// \name Prepared by solveSequential() (section 5) before its warm start; what they hold on entry is ignored
+  ///@{
+  Vec3 r_a = Vec3::Zero();        ///< \f$r_A = p - x_A\f$ [m]
+  Vec3 r_b = Vec3::Zero();        ///< \f$r_B = p - x_B\f$ [m]
+  /// \f$\mathbf K = (m_A^{-1} + m_B^{-1})\,\mathbf 1 - [r_A]_\times I_A^{-1} [r_A]_\times - [r_B]_\times I_B^{-1} [r_B]_\times\f$:
+  /// an impulse J at p changes \f$\dot p_A - \dot p_B\f$ by \f$\mathbf K J\f$, and
+  /// \f$d \cdot \mathbf K d\f$ is inverseEffectiveMass() along d [1/kg]
+  Mat3 K_matrix = Mat3::Zero();
+  ///@}
 };
 ///@}
 
@@ -387,6 +396,8 @@ class World {
   std::unique_ptr<BroadPhase> broad_phase_;
   std::shared_ptr<RestingContactSolver> resting_solver_;
   std::vector<Contact> colliding_;
+  std::vector<Mat3> inv_inertia_body_;     // I_body^-1 once, 0 when fixed
+  PairList found_;                         // the broad phase's pairs, refilled in place
   std::vector<int> resting_;
   Diagnostics diagnostics_;
   PhaseTimes times_;

@@ -142,6 +142,7 @@ World::World(Scene scene, Settings settings, std::shared_ptr<RestingContactSolve
     states_[i].q.normalize();
     if (bodies_[i].fixed) states_[i].P = states_[i].L = Vec3::Zero();
     (isPlane(bodies_[i]) ? planes_ : bounded_).push_back(i);
+    inv_inertia_body_.push_back(bodies_[i].fixed ? Mat3(Mat3::Zero()) : Mat3(bodies_[i].inertia_body.inverse()));
   }
   broad_phase_ = std::make_unique<IncrementalBroadPhase>();
 }
@@ -196,7 +197,7 @@ Vec3 World::angularVelocity(int i) const {
   requireBody(i);
   if (bodies_[i].fixed) return Vec3::Zero();
   const Mat3 R = states_[i].q.toRotationMatrix();
-  return R * bodies_[i].inertia_body.inverse() * R.transpose() * states_[i].L;
+  return R * inv_inertia_body_[i] * R.transpose() * states_[i].L;
 }
 
 double World::depth(int i, int j) const {
@@ -253,9 +254,8 @@ void World::findCandidatePairs() {
       const BodyState& s = states_[bounded_[k]];
       boxes_[k] = aabb(bodies_[bounded_[k]].shape, Pose{s.x, s.q});
     }
-    PairList found;
-    broad_phase_->findPairs(boxes_, found);
-    for (const BoxPair& pair : found) pairs_.push_back({bounded_[pair.first], bounded_[pair.second]});
+    broad_phase_->findPairs(boxes_, found_);
+    for (const BoxPair& pair : found_) pairs_.push_back({bounded_[pair.first], bounded_[pair.second]});
   } else {
     for (int k = 0; k < n; ++k) {
       for (int l = k + 1; l < n; ++l) pairs_.push_back({bounded_[k], bounded_[l]});
@@ -313,7 +313,7 @@ void World::loadContactBodies() {
     } else {
       const Mat3 R = states_[i].q.toRotationMatrix();
       cb.inv_mass = 1.0 / bodies_[i].mass;
-      cb.I_inv_world = R * bodies_[i].inertia_body.inverse() * R.transpose();
+      cb.I_inv_world = R * inv_inertia_body_[i] * R.transpose();
       cb.v = states_[i].P * cb.inv_mass;
       cb.omega = cb.I_inv_world * states_[i].L;
     }
