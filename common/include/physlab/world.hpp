@@ -318,6 +318,14 @@ class RestingContactSolver {
   virtual int solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const std::vector<int>& resting,
                     const std::vector<BodyDescription>& descriptions, const std::vector<BodyState>& states,
                     const Vec3& gravity, double h) = 0;
+  /// Sub-stepping solvers (Lab 6's soft step) move the bodies while they solve. World::step() calls
+  /// this in its integrate phase after a step whose solve() ran: such a solver writes every moving
+  /// body's new centre x and orientation q into `states` and returns true, and the World then
+  /// integrates nothing itself. The default returns false: the World integrates the velocities.
+  virtual bool placeBodies(std::vector<BodyState>& states) {
+    (void)states;
+    return false;
+  }
 };
 
 /// Rigid bodies with impulse-based collision response.
@@ -388,6 +396,7 @@ class World {
   std::shared_ptr<RestingContactSolver> resting_solver_;
   std::vector<Contact> colliding_;
   std::vector<int> resting_;
+  bool resting_solved_ = false;  // the resting solver ran this step (it may have moved the bodies)
   Diagnostics diagnostics_;
   PhaseTimes times_;
   double time_ = 0.0;
