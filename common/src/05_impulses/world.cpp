@@ -423,7 +423,6 @@ void World::respond(double h) {
 }
 
 void World::solveRestingContacts(double h) {
-  resting_solved_ = false;
   if (!resting_solver_) return;
   resting_.clear();
   // Separating points go too: the solver leaves a point alone when nothing pushes it together,
