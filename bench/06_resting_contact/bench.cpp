@@ -37,6 +37,10 @@
 //   (the students' contactMatrix() and solveLcpPgsCone(), 20 sweeps); pivoting solves the normal
 //   rows only (it cannot take friction); Lemke solves the friction pyramid (4 directions: 6
 //   unknowns per point).
+// - PhysLab soft step (Lab 6, section 9): the same World with a SoftStepSolver (SoftStepSettings{}:
+//   4 substeps of h/4, each one soft sweep with 60 Hz contact springs of damping ratio 10 and one
+//   rigid relax sweep, friction on the cone's disc; the bodies move per substep): 8 sweeps a step.
+//   The work-precision sweep varies its substeps (1 to 8).
 // - Bullet: stepSimulation(h, 0), one internal step of h: btDbvtBroadphase, btBoxBoxDetector
 //   (a persistent manifold of up to 4 points per pair), btSequentialImpulseConstraintSolver with
 //   20 iterations, warm starting, split impulse, two friction directions per point, friction the
@@ -84,6 +88,7 @@
 #include "physlab/error.hpp"
 #include "physlab/plot.hpp"
 #include "physlab/resting.hpp"
+#include "physlab/soft_step.hpp"
 
 #ifdef PHYSLAB_HAVE_BULLET
 #include "../support/bullet_world.hpp"
@@ -101,7 +106,8 @@ constexpr double kStands = 0.05;    // the issue's bar: no cube moves more than 
 constexpr double kPitch = 0.22;     // cubePyramid's spacing: edge 0.2 m plus the 0.02 m gap [m]
 constexpr int kIterations = 20;     // PGS sweeps (ours, ODE QuickStep) and Bullet's iterations
 constexpr int kMaxContactsPerPair = 4;
-constexpr std::size_t kDense = 2;   // the engines' index of our dense PGS
+constexpr std::size_t kSoft = 2;    // the engines' index of our soft step
+constexpr std::size_t kDense = 3;   // the engines' index of our dense PGS
 
 // One engine stepping one scene; position(i) and states() of the scene's bodies (fixed bodies
 // included), states() as our BodyState (x, q, P = m v, L = world inertia times omega).
@@ -127,10 +133,21 @@ RestingSettings oursSettings(LcpMethod method, int sweeps = kIterations, bool ma
   return s;
 }
 
+// ----- The soft step (section 9) --------------------------------------------------------------
+// SoftStepSettings{} (4 substeps of one soft and one relax sweep: 8 sweeps a step, 60 Hz, zeta 10)
+// with `substeps` substeps; the World as for PGS (restingWorldSettings()).
+SoftStepSettings softSettings(int substeps = SoftStepSettings{}.substeps) {
+  SoftStepSettings s;
+  s.substeps = substeps;
+  return s;
+}
+
 class OurSimulation : public Simulation {
  public:
   explicit OurSimulation(const Scene& scene, const RestingSettings& settings)
       : world_(scene, restingWorldSettings(), std::make_shared<LcpContactSolver>(settings)) {}
+  explicit OurSimulation(const Scene& scene, const SoftStepSettings& settings)
+      : world_(scene, restingWorldSettings(), std::make_shared<SoftStepSolver>(settings)) {}
   explicit OurSimulation(World world) : world_(std::move(world)) {}
   void step(double h) override { world_.step(h); }
   Vec3 position(int i) const override { return world_.states()[static_cast<std::size_t>(i)].x; }
@@ -671,6 +688,8 @@ int main(int argc, char** argv) {
         {"PhysLab PGS matrix-free (cone, 100 sweeps)", "PhysLab PGS 100 sweeps", "linespoints pt 7 dt 2", 1.0,
          ours_budget,
          [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Pgs, 100, true)); }},
+        {"PhysLab soft step (4 substeps, 60 Hz, 8 sweeps)", "PhysLab soft step", "linespoints pt 5", 1.0, ours_budget,
+         [](const Scene& s) { return std::make_unique<OurSimulation>(s, softSettings()); }},
         {"PhysLab PGS dense (students' A and cone PGS, 20 sweeps)", "PhysLab PGS dense", "linespoints pt 7 dt 3", 2.0,
          options.quick ? 3.0 : 25.0,
          [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Pgs)); }},
@@ -680,7 +699,8 @@ int main(int argc, char** argv) {
          [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Lemke)); }},
     };
     std::cout << "PhysLab: " << restingWorldSettings()
-              << "\n  resting (PGS): " << oursSettings(LcpMethod::Pgs, kIterations, true).toString() << "\n";
+              << "\n  resting (PGS): " << oursSettings(LcpMethod::Pgs, kIterations, true).toString()
+              << "\n  resting (" << softSettings().toString() << ")\n";
     int bullet_index = -1;
 #ifdef PHYSLAB_HAVE_BULLET
     bench::useOurPairRules();
@@ -809,6 +829,9 @@ int main(int argc, char** argv) {
         {"PhysLab PGS matrix-free (cone), sweeps", "linespoints pt 7",
          options.quick ? std::vector<int>{5, 20} : std::vector<int>{5, 10, 20, 30, 50, 70, 100},
          [](const Scene& sc, int n) { return std::make_unique<OurSimulation>(sc, oursSettings(LcpMethod::Pgs, n, true)); }},
+        {"PhysLab soft step, substeps (2 sweeps each)", "linespoints pt 5",
+         options.quick ? std::vector<int>{1, 4} : std::vector<int>{1, 2, 3, 4, 6, 8},
+         [](const Scene& sc, int n) { return std::make_unique<OurSimulation>(sc, softSettings(n)); }},
     };
 #ifdef PHYSLAB_HAVE_BULLET
     sweeps.push_back({"Bullet (sleeping off), iterations", "linespoints pt 5",
@@ -994,7 +1017,7 @@ int main(int argc, char** argv) {
       const int cubes = rows[big] * (rows[big] + 1) / 2;
       std::string ours;
       double best = INFINITY;
-      for (std::size_t e = 0; e < 2; ++e) {
+      for (const std::size_t e : {std::size_t{0}, std::size_t{1}, kSoft}) {
         const Run& r = runs[e][big];
         const bool stands = r.steps == steps && r.finite && r.drift_max <= kStands;
         if (stands) best = std::min(best, 1e3 * r.per_step());

@@ -118,7 +118,7 @@ std::string methodColour(const std::string& title) {
       // Lab 5: responses
       {"sequential", "#1f5fbf"}, {"simultaneous", "#d62728"}, {"penalty", "#ff9f1c"},
       // Lab 6: LCP solvers
-      {"pivoting", "#2ca02c"}, {"Lemke", "#9467bd"}, {"PGS", "#ff7f0e"},
+      {"pivoting", "#2ca02c"}, {"Lemke", "#9467bd"}, {"PGS", "#ff7f0e"}, {"soft step", "#e7298a"},
       // Peers
       {"Bullet", "#7f7f7f"}, {"FCL", "#bcbd22"}, {"ODE", "#17becf"}, {"MuJoCo", "#8c564b"},
       {"Boost.Odeint", "#e377c2"}, {"Siconos", "#c49c94"}};

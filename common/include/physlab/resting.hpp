@@ -43,6 +43,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physlab/lcp.hpp"
@@ -237,6 +238,10 @@ Scene frictionRamp(double theta, const std::vector<double>& mu);
 /// A light cube (1 kg, edge 0.2 m) on the ground and a cube `ratio` times heavier on top of it.
 Scene heavyOnLight(double ratio);
 ///@}
+
+/// An orthonormal pair (t, o) spanning the plane normal to the unit vector n, t chosen from n alone
+/// (the friction rows of the cone solvers). No checks: n must be a unit vector.
+std::pair<Vec3, Vec3> tangentPair(const Vec3& n);
 
 /// k unit directions evenly spaced in the plane normal to the unit vector n, the first along a
 /// tangent chosen from n alone (the same n gives the same directions).

@@ -327,6 +327,14 @@ class RestingContactSolver {
   virtual int solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts, const std::vector<int>& resting,
                     const std::vector<BodyDescription>& descriptions, const std::vector<BodyState>& states,
                     const Vec3& gravity, double h) = 0;
+  /// Sub-stepping solvers (Lab 6's soft step) move the bodies while they solve. World::step() calls
+  /// this in its integrate phase after a step whose solve() ran: such a solver writes every moving
+  /// body's new centre x and orientation q into `states` and returns true, and the World then
+  /// integrates nothing itself. The default returns false: the World integrates the velocities.
+  virtual bool placeBodies(std::vector<BodyState>& states) {
+    (void)states;
+    return false;
+  }
 };
 
 /// Rigid bodies with impulse-based collision response.
@@ -399,6 +407,7 @@ class World {
   std::vector<Mat3> inv_inertia_body_;     // I_body^-1 once, 0 when fixed
   PairList found_;                         // the broad phase's pairs, refilled in place
   std::vector<int> resting_;
+  bool resting_solved_ = false;  // the resting solver ran this step (it may have moved the bodies)
   Diagnostics diagnostics_;
   PhaseTimes times_;
   double time_ = 0.0;

@@ -40,18 +40,13 @@ std::string RestingSettings::toString() const {
   return out.str();
 }
 
-namespace {
-
-// An orthonormal pair spanning the plane normal to the unit n, the first chosen from n alone:
-// n crossed with the world axis it is least aligned with, so the tangent is never short.
+// n crossed with the world axis it is least aligned with, so the tangent is never short
 std::pair<Vec3, Vec3> tangentPair(const Vec3& n) {
   Index axis = 0;
   n.cwiseAbs().minCoeff(&axis);
   const Vec3 t1 = n.cross(Vec3::Unit(axis)).normalized();
   return {t1, n.cross(t1)};
 }
-
-}  // namespace
 
 std::vector<Vec3> tangentDirections(const Vec3& n, int k) {
   if (k < 1) throw InvalidInput("tangentDirections needs k >= 1, got " + std::to_string(k));

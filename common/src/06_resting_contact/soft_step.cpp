@@ -1,0 +1,197 @@
+// Lab 6 framework: the soft step (sub-stepping with soft contacts and relaxation) as a resting
+// solver. It prepares each point once per step, then runs the substeps with the students'
+// softCoefficients() and softNormalImpulse(), and moves the bodies itself.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <tuple>
+
+#include "physlab/error.hpp"
+#include "physlab/rigid.hpp"
+#include "physlab/soft_step.hpp"
+
+namespace physlab {
+
+std::string SoftStepSettings::toString() const {
+  std::ostringstream out;
+  out << "soft step: substeps=" << substeps << " contact_hertz=" << contact_hertz
+      << " fixed_hertz_scale=" << fixed_hertz_scale << " damping_ratio=" << damping_ratio
+      << " solve_iterations=" << solve_iterations << " relax_iterations=" << relax_iterations
+      << " max_push=" << max_push << " top_down=" << (top_down ? "yes" : "no");
+  return out.str();
+}
+
+SoftStepSolver::SoftStepSolver(SoftStepSettings settings) : settings_(settings) {
+  if (settings_.substeps < 1) throw InvalidInput("soft step settings substeps must be at least 1");
+  requireNonNegative(settings_.contact_hertz, "soft step settings contact_hertz");
+  requireNonNegative(settings_.fixed_hertz_scale, "soft step settings fixed_hertz_scale");
+  requireNonNegative(settings_.damping_ratio, "soft step settings damping_ratio");
+  if (settings_.solve_iterations < 1) throw InvalidInput("soft step settings solve_iterations must be at least 1");
+  if (settings_.relax_iterations < 0) throw InvalidInput("soft step settings relax_iterations must be at least 0");
+  if (!(settings_.max_push > 0.0)) throw InvalidInput("soft step settings max_push must be positive");
+}
+
+std::string SoftStepSolver::describe() const { return settings_.toString(); }
+
+int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
+                          const std::vector<int>& resting, const std::vector<BodyDescription>& /*descriptions*/,
+                          const std::vector<BodyState>& /*states*/, const Vec3& gravity, double h) {
+  const int n = settings_.substeps;
+  const double h_s = h / n;
+  soft_ = softCoefficients(settings_.contact_hertz, settings_.damping_ratio, h_s);
+  soft_fixed_ = softCoefficients(settings_.fixed_hertz_scale * settings_.contact_hertz, settings_.damping_ratio, h_s);
+
+  // Gravity, applied by the World over h, comes back per substep; no motion yet
+  dx_.assign(bodies.size(), Vec3::Zero());
+  dtheta_.assign(bodies.size(), Vec3::Zero());
+  dq_.assign(bodies.size(), Quat::Identity());
+  for (ContactBody& body : bodies) {
+    if (body.inv_mass > 0.0) body.v -= h * gravity;
+  }
+
+  // The sweep order: highest point first (along -gravity), or the World's
+  order_.resize(resting.size());
+  for (std::size_t k = 0; k < resting.size(); ++k) {
+    const double height = settings_.top_down ? contacts[static_cast<std::size_t>(resting[k])].p.dot(gravity) : 0.0;
+    order_[k] = {height, resting[k]};
+  }
+  if (settings_.top_down) std::stable_sort(order_.begin(), order_.end());
+
+  // Points: anchors, Jacobian parts, effective masses; the warm start is last step's impulse per substep
+  points_.resize(resting.size());
+  for (std::size_t k = 0; k < resting.size(); ++k) {
+    const Contact& c = contacts[static_cast<std::size_t>(order_[k].second)];
+    Point& pt = points_[k];
+    const ContactBody& A = bodies[static_cast<std::size_t>(c.a)];
+    const ContactBody& B = bodies[static_cast<std::size_t>(c.b)];
+    pt.a = static_cast<std::size_t>(c.a);
+    pt.b = static_cast<std::size_t>(c.b);
+    pt.r_a = c.p - A.x;
+    pt.r_b = c.p - B.x;
+    pt.d[0] = c.n;
+    std::tie(pt.d[1], pt.d[2]) = tangentPair(c.n);
+    for (int i = 0; i < 3; ++i) {
+      pt.ang_a[i] = pt.r_a.cross(pt.d[i]);
+      pt.ang_b[i] = pt.r_b.cross(pt.d[i]);
+      pt.turn_a[i] = A.I_inv_world * pt.ang_a[i];
+      pt.turn_b[i] = B.I_inv_world * pt.ang_b[i];
+      const double K = A.inv_mass + B.inv_mass + pt.ang_a[i].dot(pt.turn_a[i]) + pt.ang_b[i].dot(pt.turn_b[i]);
+      if (!(K > 0.0)) {
+        throw InvalidInput("soft step: contact " + std::to_string(order_[k].second) + " has no moving body along row " +
+                           std::to_string(i));
+      }
+      pt.mass[i] = 1.0 / K;
+    }
+    pt.depth = c.depth;
+    pt.mu = c.mu;
+    pt.soft_fixed = A.inv_mass == 0.0 || B.inv_mass == 0.0;
+    pt.bounce = c.kind == ContactKind::Colliding && c.epsilon > 0.0;
+    pt.target = -c.epsilon * c.v_rel_minus;
+    pt.pushed = 0.0;
+    pt.total = Vec3::Zero();
+    pt.lambda = Vec3(std::max(0.0, c.j), c.j_t.dot(pt.d[1]), c.j_t.dot(pt.d[2])) / n;
+    const double radius = pt.mu * pt.lambda(0), length = pt.lambda.tail<2>().norm();
+    if (length > radius) pt.lambda.tail<2>() *= length > 0.0 ? radius / length : 0.0;
+  }
+
+  // The substeps: gravity, warm start, soft sweeps, positions, relax sweeps
+  for (int step = 0; step < n; ++step) {
+    for (ContactBody& body : bodies) {
+      if (body.inv_mass > 0.0) body.v += h_s * gravity;
+    }
+    for (const Point& pt : points_) {
+      ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
+      for (int i = 0; i < 3; ++i) {
+        A.v += (A.inv_mass * pt.lambda(i)) * pt.d[i];
+        A.omega += pt.lambda(i) * pt.turn_a[i];
+        B.v -= (B.inv_mass * pt.lambda(i)) * pt.d[i];
+        B.omega -= pt.lambda(i) * pt.turn_b[i];
+      }
+    }
+    for (int i = 0; i < settings_.solve_iterations; ++i) sweep(bodies, h_s, false);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const ContactBody& body = bodies[i];
+      if (!(body.inv_mass > 0.0)) continue;
+      dx_[i] += h_s * body.v;
+      if (body.omega.isZero()) continue;
+      dtheta_[i] += h_s * body.omega;
+      dq_[i] = exponentialUpdate(dq_[i], body.omega, h_s);
+    }
+    for (int r = 0; r < settings_.relax_iterations; ++r) sweep(bodies, h_s, true);
+    for (Point& pt : points_) {
+      pt.total += pt.lambda;
+      pt.pushed = std::max(pt.pushed, pt.lambda(0));
+    }
+  }
+
+  // Restitution: a colliding point that was pushed aims at its bounce, once
+  for (Point& pt : points_) {
+    if (!pt.bounce || pt.pushed <= 0.0) continue;
+    ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
+    const double v_n = pt.d[0].dot(A.v - B.v) + pt.ang_a[0].dot(A.omega) - pt.ang_b[0].dot(B.omega);
+    const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (v_n - pt.target));
+    const double change = lambda - pt.lambda(0);
+    A.v += (A.inv_mass * change) * pt.d[0];
+    A.omega += change * pt.turn_a[0];
+    B.v -= (B.inv_mass * change) * pt.d[0];
+    B.omega -= change * pt.turn_b[0];
+    pt.lambda(0) = lambda;
+    pt.total(0) += change;
+  }
+
+  for (std::size_t k = 0; k < resting.size(); ++k) {
+    Contact& c = contacts[static_cast<std::size_t>(order_[k].second)];
+    const Point& pt = points_[k];
+    c.j = pt.total(0);
+    c.j_t = pt.total(1) * pt.d[1] + pt.total(2) * pt.d[2];
+  }
+  moved_ = true;
+  return n * (settings_.solve_iterations + settings_.relax_iterations);
+}
+
+// One Gauss-Seidel sweep over the points: the normal row by softNormalImpulse() at the separation
+// now, then friction on the disc of radius mu lambda_n
+void SoftStepSolver::sweep(std::vector<ContactBody>& bodies, double h_s, bool relax) {
+  for (Point& pt : points_) {
+    ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
+    const double v_n = pt.d[0].dot(A.v - B.v) + pt.ang_a[0].dot(A.omega) - pt.ang_b[0].dot(B.omega);
+    // The anchors moved with their bodies: the gap now, to first order in the rotation
+    const double s = -pt.depth + pt.d[0].dot(dx_[pt.a] - dx_[pt.b]) + pt.ang_a[0].dot(dtheta_[pt.a]) -
+                     pt.ang_b[0].dot(dtheta_[pt.b]);
+    const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, s, pt.mass[0], pt.soft_fixed ? soft_fixed_ : soft_,
+                                              h_s, settings_.max_push, relax);
+    const double dn = lambda_n - pt.lambda(0);
+    A.v += (A.inv_mass * dn) * pt.d[0];
+    A.omega += dn * pt.turn_a[0];
+    B.v -= (B.inv_mass * dn) * pt.d[0];
+    B.omega -= dn * pt.turn_b[0];
+    pt.lambda(0) = lambda_n;
+    // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc
+    const Vec3 relative = A.v - B.v;
+    const double v_t = pt.d[1].dot(relative) + pt.ang_a[1].dot(A.omega) - pt.ang_b[1].dot(B.omega);
+    const double v_o = pt.d[2].dot(relative) + pt.ang_a[2].dot(A.omega) - pt.ang_b[2].dot(B.omega);
+    Eigen::Vector2d lambda_T(pt.lambda(1) - pt.mass[1] * v_t, pt.lambda(2) - pt.mass[2] * v_o);
+    const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
+    if (length2 > radius * radius) lambda_T *= radius > 0.0 ? radius / std::sqrt(length2) : 0.0;
+    const double dt = lambda_T(0) - pt.lambda(1), d_o = lambda_T(1) - pt.lambda(2);
+    const Vec3 push = dt * pt.d[1] + d_o * pt.d[2];
+    A.v += A.inv_mass * push;
+    A.omega += dt * pt.turn_a[1] + d_o * pt.turn_a[2];
+    B.v -= B.inv_mass * push;
+    B.omega -= dt * pt.turn_b[1] + d_o * pt.turn_b[2];
+    pt.lambda(1) = lambda_T(0);
+    pt.lambda(2) = lambda_T(1);
+  }
+}
+
+bool SoftStepSolver::placeBodies(std::vector<BodyState>& states) {
+  if (!moved_) return false;
+  moved_ = false;
+  for (std::size_t i = 0; i < states.size() && i < dx_.size(); ++i) {
+    states[i].x += dx_[i];
+    states[i].q = (dq_[i] * states[i].q).normalized();
+  }
+  return true;
+}
+
+}  // namespace physlab
