@@ -91,7 +91,7 @@ double lcpResidual(const MatX& A, const VecX& b, const VecX& f);
 
 /// Dantzig's pivoting method as Baraff describes it: contacts are added one at a time, each time
 /// the one not yet taken with the most negative \f$w_d\f$ (ties: the lowest index; in index order
-/// Baraff's, on the 55-cube pyramid's LCP, needed 5420 pivots, this order 600: the contacts that
+/// Baraff's, on the 55-cube pyramid's LCP, needed 5388 pivots, this order 600: the contacts that
 /// carry the most load are clamped first, and later drives move fewer clamped forces); while the new contact's \f$w_d < 0\f$ (beyond round-off of the terms it sums: below
 /// \f$-\text{pivot\_tolerance}\,(\max|a_{ij}| + n(\sum_j |a_{dj}||f_j| + |b_d|))\f$), raise \f$f_d\f$ along the direction that keeps every
 /// clamped contact at \f$w = 0\f$ and every free contact at \f$f = 0\f$, by the largest step that keeps
