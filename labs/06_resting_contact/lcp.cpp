@@ -14,9 +14,12 @@ namespace physlab {
 LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& options) {
   // TODO(student): validateLcp(A, b, "solveLcpPivoting"), options.tolerance and pivot_tolerance >= 0 (InvalidInput);
   // TODO(student): start from f = 0, w = b, with no contact clamped (C) or free (NC).
-  // TODO(student): then take the contacts d = 0..n-1 in order, each once.
+  // TODO(student): then take each contact once: n times, the one d not yet taken with the most negative w.
   // Sign tests on w and dw need A's scale: below pivot_tolerance * scale is round-off
   // TODO(student): scale = the largest |a_ij|.
+  // Take the unseen contact with the most negative w (ties: the lowest index): the one the
+  // others' forces are least likely to hold up, so later drives disturb fewer clamped forces
+  // TODO(student): d = argmin of w_i over the contacts not yet taken (strict <, scanning i = 0..n-1); mark it taken.
   // Drive w_d to zero, changing one contact's set at each blocked step (steps that others
   // block may bring w_d to zero on the way: a degenerate contact). A w_d within round-off of
   // the terms it sums (b_d and a_dj f_j, each step adding its own) is zero: large opposing
@@ -51,6 +54,8 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   // Build the tableau [I | -A | -e | b] of w - A f - e z0 = b; variables 0..n-1 are w, n..2n-1 f, 2n z0
   // TODO(student): n x (2n + 2) tableau; the basis starts as w_0..w_{n-1}; a pivot on (row, column) divides the row
   // TODO(student): by its entry and subtracts multiples of it from every other row, and puts the column's variable in the basis.
+  // requireAccurate()'s bound on the answer, applied to the basic values along the way
+  // TODO(student): bound = sqrt(pivot_tolerance) * max(1, max |b_i|), the one the answer is checked against.
   // Let z0 enter where b is most negative: z0 = -min b makes every w >= 0 (ties: the last such
   // row, the lexicographic minimum of the rows of [b | I])
   // TODO(student): pivot on (argmin b, z0); the w that left says which variable enters next.
@@ -58,12 +63,16 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   // TODO(student): w_i <-> f_i; count pivots, LcpFailure past max(options.max_iterations, 10 n).
   // Find the leaving row by the minimum ratio test; ties broken lexicographically by the
   // rows of B^-1 (the tableau's first n columns), which never cycles
-  // Entries within round-off of zero (which grows with n), relative to the column's largest, are
-  // no pivots: dividing by one would wreck the tableau (redundant contacts make such columns)
-  // TODO(student): eligible rows: entry > pivot_tolerance * n * max(1, largest |entry| of the column);
+  // Entries below sqrt(pivot_tolerance) of the column's largest are no pivots: redundant
+  // contacts make entries that are zero in exact arithmetic and round-off of the eliminations
+  // here, and dividing by one would wreck the tableau (lcp.hpp says why this size)
+  // TODO(student): eligible rows: entry > sqrt(pivot_tolerance) * largest |entry| of the column;
   // TODO(student): none eligible: throw LcpFailure("... ray termination ...").
   // z0 leaving among the ties ends the method at once
   // TODO(student): otherwise compare the tied rows' entries in columns 0, 1, ... divided by the pivot entry, keeping the smallest.
+  // The basic values stay >= 0 in exact arithmetic; one far below 0 is round-off that has
+  // already wrecked the tableau: stop now rather than pivot on to the limit
+  // TODO(student): after each pivot, LcpFailure("... lost accuracy ...") when some right-hand side < -bound.
   // Read f from the basic variables (round-off may leave -1e-17: clamp to the contract's f >= 0)
   // TODO(student): f_i = right-hand side of the row where f_i is basic, 0 when nonbasic; w = A f + b; residual;
   // TODO(student): LcpFailure("... lost accuracy ...") as in pivoting.

@@ -28,10 +28,14 @@ void validateOptions(const LcpOptions& options, const std::string& what) {
 }
 
 // An exact method whose round-off wrecked its answer says so rather than return a wrong f.
-void requireAccurate(const LcpSolution& s, const VecX& b, const LcpOptions& options, const std::string& what) {
+// The largest error an exact method may leave: half the digits of pivot_tolerance, on b's scale.
+double accuracyBound(const VecX& b, const LcpOptions& options) {
   // (lpNorm<Infinity> is max |b_i|, and 0 for an empty LCP, where maxCoeff() reads past the end)
-  const double bound = std::sqrt(options.pivot_tolerance) * std::max(1.0, b.lpNorm<Eigen::Infinity>());
-  if (!(s.residual <= bound)) {
+  return std::sqrt(options.pivot_tolerance) * std::max(1.0, b.lpNorm<Eigen::Infinity>());
+}
+
+void requireAccurate(const LcpSolution& s, const VecX& b, const LcpOptions& options, const std::string& what) {
+  if (!(s.residual <= accuracyBound(b, options))) {
     throw LcpFailure(what + ": lost accuracy after " + std::to_string(s.iterations) + " pivots (residual " +
                      std::to_string(s.residual) + ")");
   }
@@ -88,7 +92,15 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   std::vector<Index> clamped, free;  // C: w = 0, f >= 0; NC: f = 0, w >= 0
   clamped.reserve(static_cast<std::size_t>(n));
   free.reserve(static_cast<std::size_t>(n));
-  for (Index d = 0; d < n; ++d) {
+  std::vector<bool> seen(static_cast<std::size_t>(n), false);
+  for (Index k = 0; k < n; ++k) {
+    // Take the unseen contact with the most negative w (ties: the lowest index): the one the
+    // others' forces are least likely to hold up, so later drives disturb fewer clamped forces
+    Index d = -1;
+    for (Index i = 0; i < n; ++i) {
+      if (!seen[static_cast<std::size_t>(i)] && (d < 0 || s.w(i) < s.w(d))) d = i;
+    }
+    seen[static_cast<std::size_t>(d)] = true;
     // Drive w_d to zero, changing one contact's set at each blocked step (steps that others
     // block may bring w_d to zero on the way: a degenerate contact). A w_d within round-off of
     // the terms it sums (b_d and a_dj f_j, each step adding its own) is zero: large opposing
@@ -182,6 +194,8 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
     basis[static_cast<std::size_t>(row)] = entering;
   };
   const int limit = pivotLimit(options, n);
+  // requireAccurate()'s bound on the answer, applied to the basic values along the way
+  const double feasibility = accuracyBound(b, options);
 
   // Let z0 enter where b is most negative: z0 = -min b makes every w >= 0 (ties: the last such
   // row, the lexicographic minimum of the rows of [b | I])
@@ -203,10 +217,10 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
     // rows of B^-1 (the tableau's first n columns), which never cycles
     std::vector<Index> candidates;
     double best = kInfinity;
-    // Entries within round-off of zero (which grows with n), relative to the column's largest, are
-    // no pivots: dividing by one would wreck the tableau (redundant contacts make such columns)
-    const double eligible =
-        options.pivot_tolerance * static_cast<double>(n) * std::max(1.0, T.col(entering).cwiseAbs().maxCoeff());
+    // Entries below sqrt(pivot_tolerance) of the column's largest are no pivots: redundant
+    // contacts make entries that are zero in exact arithmetic and round-off of the eliminations
+    // here, and dividing by one would wreck the tableau (lcp.hpp says why this size)
+    const double eligible = std::sqrt(options.pivot_tolerance) * T.col(entering).cwiseAbs().maxCoeff();
     for (Index i = 0; i < n; ++i) {
       if (T(i, entering) > eligible) best = std::min(best, T(i, rhs) / T(i, entering));
     }
@@ -238,6 +252,12 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
     leaving = basis[static_cast<std::size_t>(row)];
     pivot(row, entering);
     ++s.iterations;
+    // The basic values stay >= 0 in exact arithmetic; one far below 0 is round-off that has
+    // already wrecked the tableau: stop now rather than pivot on to the limit
+    if (T.col(rhs).minCoeff() < -feasibility) {
+      throw LcpFailure("solveLcpLemke: lost accuracy after " + std::to_string(s.iterations) +
+                       " pivots (a basic variable fell to " + std::to_string(T.col(rhs).minCoeff()) + ")");
+    }
   }
 
   // Read f from the basic variables (round-off may leave -1e-17: clamp to the contract's f >= 0)

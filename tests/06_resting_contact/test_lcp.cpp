@@ -284,35 +284,41 @@ TEST_CASE("pivoting and lemke: iterations count every pivot, counted by hand", "
   const double a = uniform(0.1, 10.0), b1 = -uniform(0.1, 10.0);
   CHECK(solveLcpPivoting(MatX::Constant(1, 1, a), VecX::Constant(1, b1)).iterations == 1);
   CHECK(solveLcpLemke(MatX::Constant(1, 1, a), VecX::Constant(1, b1)).iterations == 2);
-  // A = [[1, c], [c, 1]], b = (-1, -2), c = 0.9. Pivoting: (1) contact 0 clamps at f = (1, 0),
-  // w_1 = -2 + c; (2) driving f_1 moves f_0 by -c, and f_0 reaches 0 first (at f_1 = 1 / c,
-  // before w_1 does at (2 - c) / (1 - c^2)): contact 0 leaves for the free set; (3) f_1 alone
-  // then rises to 2, where w_1 = 0, with w_0 = 2c - 1 > 0 never blocking. f = (0, 2).
-  // Lemke: z0 enters at row 1 (b_1 most negative): z0 = 2, w_0 = 1; f_1 enters, ratios 1/(1 - c)
-  // = 10 for w_0 and 2 for z0: z0 leaves (2 pivots), f = (0, 2).
+  // A = [[1, c], [c, 1]], b = (-1, -2), c = 0.9. Pivoting takes contact 1 first (w_1 = -2 is the
+  // most negative): f_1 alone rises to 2, where w_1 = 0 (1 pivot; contact 0, not yet taken, is
+  // in no ratio test); then w_0 = -1 + 2c = 0.8 >= 0 and contact 0 joins the free set with no
+  // pivot. f = (0, 2). Lemke: z0 enters at row 1 (b_1 most negative): z0 = 2, w_0 = 1; f_1
+  // enters, ratios 1/(1 - c) = 10 for w_0 and 2 for z0: z0 leaves (2 pivots), f = (0, 2).
   const double c = 0.9;
   MatX A(2, 2);
   A << 1.0, c, c, 1.0;
   const VecX b = (VecX(2) << -1.0, -2.0).finished();
   const LcpSolution piv = solveLcpPivoting(A, b), lem = solveLcpLemke(A, b);
-  CHECK(piv.iterations == 3);
+  CHECK(piv.iterations == 1);
   CHECK(lem.iterations == 2);
   // A few operations on numbers of order 1: a few ulps
   const VecX f = (VecX(2) << 0.0, 2.0).finished();
   CHECK((piv.f - f).cwiseAbs().maxCoeff() <= 4e-15);
   CHECK((lem.f - f).cwiseAbs().maxCoeff() <= 4e-15);
   CHECK(piv.w(0) == Approx(2.0 * c - 1.0).epsilon(1e-14));
+  // b = (-1, -0.95): contact 0 first, f_0 = 1 (pivot 1), leaving w_1 = -0.95 + c = -0.05. Driving
+  // f_1 moves f_0 by -c (df = (-c, 1), dw_1 = 1 - c^2 = 0.19): w_1 reaches 0 at f_1 = 0.05 / 0.19,
+  // before f_0 reaches 0 at 1 / c (pivot 2). f = A^-1 (1, 0.95) = (0.145, 0.05) / 0.19.
+  const VecX b2 = (VecX(2) << -1.0, -0.95).finished();
+  const LcpSolution two = solveLcpPivoting(A, b2);
+  CHECK(two.iterations == 2);
+  CHECK((two.f - (VecX(2) << 0.145, 0.05).finished() / 0.19).cwiseAbs().maxCoeff() <= 4e-15);
   // b >= 0: f = 0 solves it with no pivot at all
   CHECK(solveLcpPivoting(A, -b).iterations == 0);
   CHECK(solveLcpLemke(A, -b).iterations == 0);
-  // b = (1, -1): contact 0 never pushes (w_0 = 1 > 0, f_0 = 0) and joins the free set, so driving
-  // f_1 leaves f_0 alone (df = (0, 1), w_0 grows by c): 1 pivot, f = (0, 1), w_0 = 1 + c. A
-  // contact with f = 0 held in the clamped set would first have to leave it: 2 pivots.
+  // b = (1, -1): contact 1 is taken first and driven alone (df = (0, 1)): 1 pivot, f = (0, 1),
+  // and w_0 grows by c to 1 + c, so contact 0 joins the free set with f_0 never touched.
   const VecX free_first = (VecX(2) << 1.0, -1.0).finished();
   const LcpSolution one_free = solveLcpPivoting(A, free_first);
   CHECK(one_free.iterations == 1);
   CHECK(one_free.f(0) == 0.0);
   CHECK(std::abs(one_free.f(1) - 1.0) <= 4e-16);  // one quotient of 1s: exact, an ulp of margin
+  CHECK(std::abs(one_free.w(0) - (1.0 + c)) <= 4e-16);  // one product and one sum
   // Lemke, z0 tied for leaving: A = [[2, 1], [1, 2]], b = (-2, -1). z0 enters at row 0 (z0 = 2,
   // w_1 = 1); f_0 enters with ratios 2 / 2 for z0 and 1 / (2 - 1) for w_1: a tie, and z0 leaves
   // (2 pivots) at f = (1, 0), w = (0, 0). Letting w_1 leave instead keeps z0 basic at 0 for a

@@ -192,7 +192,10 @@ using lcp_set::checkPsdSingular;
 using lcp_set::checkInfeasible;
 
 TEST_CASE("pivoting: Murty's exponential example takes 2^n - 1 pivots (n = 1..10), and its answer is the oracle's", "[lab06][pts=1][sec=3]") {
-  // Contacts driven in index order, ties to the driven contact: the handout's rule.
+  // The most negative w is driven first, ties to the driven contact: the handout's rule. Here it
+  // is the index order: b_0 < b_1 < ... < 0, and the driven forces never reach a contact not yet
+  // taken (column j of A is zero below row j), so each untaken w_i is still b_i. The count is
+  // then the index order's: 2^k pivots to drive contact k (0-based), 2^n - 1 in all.
   checkMurty(lcp_set::pivoting, 0);
 }
 

@@ -89,14 +89,20 @@ double lcpResidual(const MatX& A, const VecX& b, const VecX& f);
 /// \name Student functions (Lab 6)
 ///@{
 
-/// Dantzig's pivoting method as Baraff describes it: contacts are added one at a time, in index
-/// order; while the new contact's \f$w_d < 0\f$ (beyond round-off of the terms it sums: below
+/// Dantzig's pivoting method as Baraff describes it: contacts are added one at a time, each time
+/// the one not yet taken with the most negative \f$w_d\f$ (ties: the lowest index; in index order
+/// Baraff's, on the 55-cube pyramid's LCP, needed 5388 pivots, this order 600: the contacts that
+/// carry the most load are clamped first, and later drives move fewer clamped forces); while the new contact's \f$w_d < 0\f$ (beyond round-off of the terms it sums: below
 /// \f$-\text{pivot\_tolerance}\,(\max|a_{ij}| + n(\sum_j |a_{dj}||f_j| + |b_d|))\f$), raise \f$f_d\f$ along the direction that keeps every
 /// clamped contact at \f$w = 0\f$ and every free contact at \f$f = 0\f$, by the largest step that keeps
 /// all \f$f \ge 0\f$ and \f$w \ge 0\f$; the contact that blocks the step changes set (d itself blocking
 /// ends the drive; ties go to d). Requires A symmetric positive semidefinite, singular ones (a
 /// contact counted twice) included, or a P-matrix (any A on which the clamped subsystems stay
-/// nonsingular works). Each step is one pivot (`iterations`).
+/// nonsingular works). Each step is one pivot (`iterations`). The pivot limit, max(max_iterations,
+/// 10 n), is a guard against cycling on round-off, not a bound of the method: every contact takes
+/// one drive of at least one pivot, and each further pivot moves a contact between the sets; no
+/// limit polynomial in n holds for every problem (Murty's example takes \f$2^n - 1\f$), so 10 n
+/// allows ten set changes per contact, six times the 1.5 per contact the pyramid needs.
 /// Throws LcpFailure ("... singular pivot ...") when nothing blocks the step (\f$w_d\f$ does not grow
 /// with \f$f_d\f$: e.g. A = [[1, -1], [-1, 1]], b < 0, which has no solution), when the clamped block
 /// \f$A_{CC}\f$ is singular, and when the pivot limit is reached. InvalidInput as validateLcp().
@@ -124,8 +130,19 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
 /// termination ...") when no variable can leave (the LCP has no solution Lemke can find; on
 /// positive semidefinite or P-matrices, it has none at all) and on reaching the pivot limit.
 /// InvalidInput as validateLcp().
-/// Entries of the entering column below pivot_tolerance times n times its largest magnitude
-/// count as zero (no pivot: the tableau's round-off grows with n). Like pivoting, never returns an answer that lost accuracy (LcpFailure).
+/// Only entries of the entering column above \f$\sqrt{\text{pivot\_tolerance}}\f$ times its largest
+/// magnitude are pivots (eligible in the ratio test). Why that size: redundant contacts (four
+/// corners of a face are three constraints; A is singular) make column entries that are zero in
+/// exact arithmetic and round-off of the eliminations in the tableau, up to about
+/// pivot_tolerance times the column's largest entry; dividing by an entry p multiplies that error
+/// by (largest / p), and the answer may keep \f$\sqrt{\text{pivot\_tolerance}}\f$ relative error (the
+/// accuracy check below), so p must be at least that fraction of the largest. (A threshold of
+/// pivot_tolerance times n let the 55-cube pyramid's LCP pivot on round-off and lose accuracy
+/// after 408 pivots; this one solves it in 1298.) Like pivoting, never returns an answer that
+/// lost accuracy: LcpFailure ("... lost accuracy ...") when the answer's residual exceeds the
+/// bound given for pivoting, and as soon as a basic variable falls below minus that bound
+/// (exact arithmetic keeps them >= 0: the tableau is already wrecked, and pivoting on would only
+/// reach the limit).
 /// Handout: Lab 6, section 4.
 LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& options = {});
 
