@@ -172,18 +172,18 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
   }
   // Test the 9 edge-pair axes, skipping (near-)parallel edges whose faces were already tested
   // (in A's frame L = e_i x (column j of R), so radii and distance are two products each; the
-  // test needs no division: only a possible winner is divided by |L|)
+  // test needs no division: only an axis that does not separate is divided by |L|)
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double length = std::sqrt(R(i1, j) * R(i1, j) + R(i2, j) * R(i2, j));
-      if (length < 1e-6) continue;
+      const double length2 = R(i1, j) * R(i1, j) + R(i2, j) * R(i2, j);
+      if (length2 < 1e-12) continue;
       const double ra = ha[i1] * absR(i2, j) + ha[i2] * absR(i1, j);
       const double rb = hb[j1] * absR(i, j2) + hb[j2] * absR(i, j1);
       const double distance = std::abs(ta[i2] * R(i1, j) - ta[i1] * R(i2, j));
       if (ra + rb < distance) return Manifold{};
-      const double overlap = (ra + rb - distance) / length;
+      const double overlap = (ra + rb - distance) / std::sqrt(length2);
       if (overlap < edge.overlap) edge = {overlap, Vec3::Zero(), 3 * i + j};
     }
   }

@@ -76,6 +76,9 @@ void validateMotion(const Motion& motion, std::string_view what) {
 void validateShape(const Sphere& sphere, std::string_view what) { requireLength(sphere.radius, what, "sphere radius"); }
 
 void validateShape(const Box& box, std::string_view what) {
+  // The common case in a few instructions (every narrow-phase call pays it): all three extents
+  // finite (one sum) and positive; the checks that name the fault only on failure
+  if (std::isfinite(box.half_extents.sum()) && box.half_extents.minCoeff() > 0.0) return;
   static constexpr const char* fields[] = {"box half extent 0", "box half extent 1", "box half extent 2"};
   for (int i = 0; i < 3; ++i) requireLength(box.half_extents[i], what, fields[i]);
 }
