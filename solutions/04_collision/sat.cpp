@@ -50,16 +50,21 @@ struct FacePolygon {
   }
 };
 
-// One Sutherland-Hodgman step, as clipPolygon() (the same points, ids and order), on the stack.
+// One Sutherland-Hodgman step, as clipPolygon() (the same points, ids and order), on the stack,
+// with each point's distance to the plane computed once.
 void clipFace(const FacePolygon& polygon, const Vec3& plane_normal, double plane_offset, std::uint32_t plane_id,
               FacePolygon& out) {
+  std::array<double, FacePolygon::kCapacity> d;
+  for (int i = 0; i < polygon.count; ++i) d[i] = plane_normal.dot(polygon.points[i]) - plane_offset;
   out.count = 0;
   for (int i = 0; i < polygon.count; ++i) {
-    const Vec3& p = polygon.points[i];
-    const Vec3& q = polygon.points[i + 1 < polygon.count ? i + 1 : 0];
-    const double dp = plane_normal.dot(p) - plane_offset, dq = plane_normal.dot(q) - plane_offset;
-    if (dp <= 0.0) out.add(p, polygon.ids[i]);
-    if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) out.add(p + dp / (dp - dq) * (q - p), combineFeatures(polygon.ids[i], plane_id));
+    const int next = i + 1 < polygon.count ? i + 1 : 0;
+    const double dp = d[i], dq = d[next];
+    if (dp <= 0.0) out.add(polygon.points[i], polygon.ids[i]);
+    if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) {
+      const Vec3 &p = polygon.points[i], &q = polygon.points[next];
+      out.add(p + dp / (dp - dq) * (q - p), combineFeatures(polygon.ids[i], plane_id));
+    }
   }
 }
 
