@@ -14,7 +14,7 @@ namespace {
 // The best axis found so far: its overlap, unit direction from B to A, and what it came from.
 struct Axis {
   double overlap = std::numeric_limits<double>::infinity();
-  Vec3 normal = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();  // (box-box edge axes make theirs only for the winner)
   int feature = -1;  // face: 0..(faces of A)-1, then B's; edge pair: its index
 };
 
@@ -37,9 +37,9 @@ ContactPolygon keepBelow(const ContactPolygon& clipped, const Vec3& n_ref, doubl
   return below;
 }
 
-// The incident face of a box while it is clipped, on the stack: 4
-// corners, and each side plane adds at most one corner to a convex polygon, so 8 points (16
-// leave room for round-off; a point past the capacity is dropped, as ContactPolygon::add does).
+// The incident face of a box while it is clipped, on the stack: 4 corners, and each side plane
+// adds at most one corner to a convex polygon, so 8 points (16 leave room for round-off; a point
+// past the capacity is dropped, as ContactPolygon::add does).
 struct FacePolygon {
   static constexpr int kCapacity = 16;
   std::array<Vec3, kCapacity> points;         // world frame
@@ -177,7 +177,7 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
   }
   // Test the 9 edge-pair axes, skipping (near-)parallel edges whose faces were already tested
   // (in A's frame L = e_i x (column j of R), so radii and distance are two products each; the
-  // test needs no division: only an axis that does not separate is divided by |L|)
+  // test needs no division, only an axis that does not separate is divided by |L|)
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
@@ -195,9 +195,9 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
   // Prefer a face axis unless an edge axis is clearly shallower
   if (edge.feature >= 0 && edge.overlap < (1.0 - kEdgeAxisBias) * face.overlap) {
     // Edge-edge: one point between the two edges that reach furthest towards each other
+    // (on the winner's unit world axis, its depth measured along that axis: the ranking above
+    // divided by a length made of R's entries, exact only for an exactly orthonormal R)
     const int i = edge.feature / 3, j = edge.feature % 3;
-    // (its unit world axis, and the depth measured along it: the ranking above divided by a
-    // length made of R's entries, exact only for an exactly orthonormal R)
     const Vec3 L = Ra.col(i).cross(Rb.col(j)).normalized();
     const Vec3 n = t.dot(L) >= 0.0 ? L : Vec3(-L);
     const double depth = (Ra.transpose() * L).cwiseAbs().dot(ha) + (Rb.transpose() * L).cwiseAbs().dot(hb) - std::abs(t.dot(L));
@@ -251,8 +251,8 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
     clipFace(clipped, -side, -centre + extent, plane_id++, polygon);
   }
   // Keep the points below the reference face, at most 4
-  // (reduceContacts returns 4 or fewer as they are, so only a larger set pays for its 64-point
-  // candidate buffer)
+  // (moved half their depth up to the midpoint, compacted in place; reduceContacts returns 4 or
+  // fewer as they are, so only a larger set pays for its 64-point candidate buffer)
   const std::uint32_t face_id = 2 * face.feature + (n_ref.dot(Rr.col(axis)) > 0.0);
   const double offset = n_ref.dot(xr) + hr[axis];
   std::array<double, FacePolygon::kCapacity> depth;
