@@ -48,14 +48,16 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
   // TODO(student): overlap = r_A + r_B - |t_A,k| (|t_B,k| for b_k); return an empty manifold at the
   //   first negative one; orient the best axis so that L . (x_A - x_B) >= 0 (from B to A).
   // Test the 9 edge-pair axes, skipping (near-)parallel edges whose faces were already tested
-  // (in A's frame L = e_i x (column j of R), so radii and distance are two products each; the
-  // test needs no division, only an axis that does not separate is divided by |L|)
+  // (in A's frame L = e_i x (column j of R), so radii and distance are two products each; neither
+  // the test nor the ranking needs |L|: g / |L| < g* / |L*| for overlaps g, g* >= 0 along the
+  // unnormalised axes is g^2 |L*|^2 < g*^2 |L|^2, so only the winner is divided by |L|)
   // TODO(student): with i1, i2 = i+1, i+2 (mod 3), the same for j: |L|^2 = R_i1j^2 + R_i2j^2
   //   (skipped below 1e-12); r_A = h_A,i1 |R_i2j| + h_A,i2 |R_i1j|; r_B = h_B,j1 |R_ij2| + h_B,j2
-  //   |R_ij1|; distance |t_A,i2 R_i1j - t_A,i1 R_i2j|; remember i and j of the least overlap / |L|.
+  //   |R_ij1|; g = r_A + r_B - |t_A,i2 R_i1j - t_A,i1 R_i2j|; return empty at g < 0; remember
+  //   i, j, g and |L|^2 of the best.
   // Prefer a face axis unless an edge axis is clearly shallower
-  // TODO(student): use the edge axis only when its overlap < (1 - kEdgeAxisBias) times the best
-  //   face overlap.
+  // TODO(student): use the edge axis only when its overlap g / |L| < (1 - kEdgeAxisBias) times
+  //   the best face overlap.
   // Edge-edge: one point between the two edges that reach furthest towards each other
   // (on the winner's unit world axis, its depth measured along that axis: the ranking above
   // divided by a length made of R's entries, exact only for an exactly orthonormal R)

@@ -14,7 +14,7 @@ namespace {
 // The best axis found so far: its overlap, unit direction from B to A, and what it came from.
 struct Axis {
   double overlap = std::numeric_limits<double>::infinity();
-  Vec3 normal = Vec3::Zero();  // (box-box edge axes make theirs only for the winner)
+  Vec3 normal = Vec3::Zero();
   int feature = -1;  // face: 0..(faces of A)-1, then B's; edge pair: its index
 };
 
@@ -164,7 +164,7 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
   const Vec3 ta = Ra.transpose() * t, tb = Rb.transpose() * t;
   // Test the 6 face axes; any positive gap is a separating plane
   // (along a_k: r_A = h_A,k, r_B = sum_j |R_kj| h_B,j; along b_k the same with R's column)
-  Axis face, edge;
+  Axis face;
   for (int k = 0; k < 3; ++k) {
     const double overlap = ha[k] + absR.row(k).dot(hb) - std::abs(ta[k]);
     if (overlap < 0.0) return Manifold{};
@@ -176,8 +176,11 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
     if (clearlyBelow(overlap, face.overlap)) face = {overlap, tb[k] >= 0.0 ? Vec3(Rb.col(k)) : Vec3(-Rb.col(k)), 3 + k};
   }
   // Test the 9 edge-pair axes, skipping (near-)parallel edges whose faces were already tested
-  // (in A's frame L = e_i x (column j of R), so radii and distance are two products each; the
-  // test needs no division, only an axis that does not separate is divided by |L|)
+  // (in A's frame L = e_i x (column j of R), so radii and distance are two products each; neither
+  // the test nor the ranking needs |L|: g / |L| < g* / |L*| for overlaps g, g* >= 0 along the
+  // unnormalised axes is g^2 |L*|^2 < g*^2 |L|^2, so only the winner is divided by |L|)
+  double best_g = 0.0, best_length2 = 0.0;
+  int best_edge = -1;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
@@ -186,18 +189,17 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
       if (length2 < 1e-12) continue;
       const double ra = ha[i1] * absR(i2, j) + ha[i2] * absR(i1, j);
       const double rb = hb[j1] * absR(i, j2) + hb[j2] * absR(i, j1);
-      const double distance = std::abs(ta[i2] * R(i1, j) - ta[i1] * R(i2, j));
-      if (ra + rb < distance) return Manifold{};
-      const double overlap = (ra + rb - distance) / std::sqrt(length2);
-      if (overlap < edge.overlap) edge = {overlap, Vec3::Zero(), 3 * i + j};
+      const double g = ra + rb - std::abs(ta[i2] * R(i1, j) - ta[i1] * R(i2, j));
+      if (g < 0.0) return Manifold{};
+      if (best_edge < 0 || g * g * best_length2 < best_g * best_g * length2) best_g = g, best_length2 = length2, best_edge = 3 * i + j;
     }
   }
   // Prefer a face axis unless an edge axis is clearly shallower
-  if (edge.feature >= 0 && edge.overlap < (1.0 - kEdgeAxisBias) * face.overlap) {
+  if (best_edge >= 0 && best_g / std::sqrt(best_length2) < (1.0 - kEdgeAxisBias) * face.overlap) {
     // Edge-edge: one point between the two edges that reach furthest towards each other
     // (on the winner's unit world axis, its depth measured along that axis: the ranking above
     // divided by a length made of R's entries, exact only for an exactly orthonormal R)
-    const int i = edge.feature / 3, j = edge.feature % 3;
+    const int i = best_edge / 3, j = best_edge % 3;
     const Vec3 L = Ra.col(i).cross(Rb.col(j)).normalized();
     const Vec3 n = t.dot(L) >= 0.0 ? L : Vec3(-L);
     const double depth = (Ra.transpose() * L).cwiseAbs().dot(ha) + (Rb.transpose() * L).cwiseAbs().dot(hb) - std::abs(t.dot(L));
@@ -214,7 +216,7 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
     Manifold m;
     m.normal = n;
     m.add(0.5 * (pa + st[0] * (qa - pa) + pb + st[1] * (qb - pb)), depth,
-          combineFeatures(100 + edge.feature, 8 * code_a + code_b));
+          combineFeatures(100 + best_edge, 8 * code_a + code_b));
     return m;
   }
   // Face: the reference face is the winner's face towards the other box
