@@ -39,22 +39,31 @@ Manifold reduceContacts(const Vec3& normal, const ContactPolygon& candidates) {
 Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pose& pose_b) {
   // Refuse a shape changed after construction and a pose that is not finite or not unit
   // TODO(student): validateShape(a, "shape a") and validatePose(pose_a, "pose_a") (collision.hpp), the same for b.
-  // Measure the overlap along an axis: radii of both projections minus the centres' distance
-  // TODO(student): r_A(L) = sum_i h_i |L . a_i| with a_i the columns of R_A; overlap = r_A + r_B -
-  //   |L . (x_A - x_B)|.
+  // Express B in A's frame once: every axis test below reads these numbers and multiplies no matrix
+  // (column j of R = R_A^T R_B is b_j in A's axes; t_A, t_B are x_A - x_B in A's and B's axes)
+  // TODO(student): R_A, R_B from the quaternions; R = R_A^T R_B and |R| (entry by entry); t_A =
+  //   R_A^T t, t_B = R_B^T t with t = x_A - x_B.
   // Test the 6 face axes; any positive gap is a separating plane
-  // TODO(student): the columns of R_A and R_B; return an empty manifold at the first negative
-  //   overlap; orient the best axis so that L . (x_A - x_B) >= 0 (from B to A).
+  // (along a_k: r_A = h_A,k, r_B = sum_j |R_kj| h_B,j; along b_k the same with R's column)
+  // TODO(student): overlap = r_A + r_B - |t_A,k| (|t_B,k| for b_k); return an empty manifold at the
+  //   first negative one; orient the best axis so that L . (x_A - x_B) >= 0 (from B to A).
   // Test the 9 edge-pair axes, skipping (near-)parallel edges whose faces were already tested
-  // TODO(student): L = a_i x b_j, skipped when |L| < 1e-6, else normalised; remember i and j of the
-  //   best.
+  // (in A's frame L = e_i x (column j of R), so radii and distance are two products each; neither
+  // the test nor the ranking needs |L|: g / |L| < g* / |L*| for overlaps g, g* >= 0 along the
+  // unnormalised axes is g^2 |L*|^2 < g*^2 |L|^2, so only the winner is divided by |L|)
+  // TODO(student): with i1, i2 = i+1, i+2 (mod 3), the same for j: |L|^2 = R_i1j^2 + R_i2j^2
+  //   (skipped below 1e-12); r_A = h_A,i1 |R_i2j| + h_A,i2 |R_i1j|; r_B = h_B,j1 |R_ij2| + h_B,j2
+  //   |R_ij1|; g = r_A + r_B - |t_A,i2 R_i1j - t_A,i1 R_i2j|; return empty at g < 0; remember
+  //   i, j, g and |L|^2 of the best.
   // Prefer a face axis unless an edge axis is clearly shallower
-  // TODO(student): use the edge axis only when its overlap < (1 - kEdgeAxisBias) times the best
-  //   face overlap.
+  // TODO(student): use the edge axis only when its overlap g / |L| < (1 - kEdgeAxisBias) times
+  //   the best face overlap.
   // Edge-edge: one point between the two edges that reach furthest towards each other
-  // TODO(student): A's edge along a_i passes through x_A + sum_{k != i} -sign(a_k . n) h_k a_k
-  //   (B's: +sign(b_k . n)); closestSegmentParameters on the two edges, the point is the midpoint,
-  //   the depth the overlap.
+  // (on the winner's unit world axis, its depth measured along that axis: the ranking above
+  // divided by a length made of R's entries, exact only for an exactly orthonormal R)
+  // TODO(student): n = a_i x b_j normalised, towards A; depth = r_A + r_B - |t . n| in the world.
+  //   A's edge along a_i passes through x_A + sum_{k != i} -sign(a_k . n) h_k a_k (B's:
+  //   +sign(b_k . n)); closestSegmentParameters on the two edges, the point is the midpoint.
   // Face: the reference face is the winner's face towards the other box
   // TODO(student): its outward normal n_ref is -n for a face of A, n for a face of B.
   // Find the incident face: the other box's face most anti-parallel to the reference normal
@@ -62,11 +71,15 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
   //   n_ref . (sign c_m) < 0; its 4 corners, in order around the face, with their corner numbers as
   //   ids.
   // Clip it by the four side planes of the reference face
-  // TODO(student): for each of the two other axes u of the reference box: clipPolygon with (u, u .
-  //   x_ref + h_u) and (-u, -u . x_ref + h_u).
+  // TODO(student): for each of the two other axes u of the reference box, planes (u, u . x_ref +
+  //   h_u) and (-u, -u . x_ref + h_u), as clipPolygon does but into small arrays on the stack (a
+  //   quad clipped by 4 planes has at most 8 points; a ContactPolygon holds 64).
   // Keep the points below the reference face, at most 4
+  // (moved half their depth up to the midpoint, compacted in place; reduceContacts returns 4 or
+  // fewer as they are, so only a larger set pays for its 64-point candidate buffer)
   // TODO(student): depth = n_ref . (face centre) - n_ref . p; keep depth >= 0 at p + depth/2 n_ref,
-  //   id combined with the reference face; then reduceContacts(n, ...).
+  //   id combined with the reference face; empty manifold when none is kept; more than 4:
+  //   reduceContacts(n, ...).
   notImplemented("collideBoxBox", "Lab 4 handout, section 5", a, pose_a, b, pose_b);
 }
 

@@ -1,6 +1,7 @@
 // Lab 4, sections 5-6: the separating-axis test for boxes and convex polyhedra, clipping of the
 // incident face (Sutherland-Hodgman), and reduction of the manifold to 4 points.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -34,6 +35,37 @@ ContactPolygon keepBelow(const ContactPolygon& clipped, const Vec3& n_ref, doubl
     if (depth >= 0.0) below.add(p + 0.5 * depth * n_ref, depth, combineFeatures(face_id, clipped.points[i].id));
   }
   return below;
+}
+
+// The incident face of a box while it is clipped, on the stack: 4 corners, and each side plane
+// adds at most one corner to a convex polygon, so 8 points (16 leave room for round-off; a point
+// past the capacity is dropped, as ContactPolygon::add does).
+struct FacePolygon {
+  static constexpr int kCapacity = 16;
+  std::array<Vec3, kCapacity> points;         // world frame
+  std::array<std::uint32_t, kCapacity> ids;  // corner numbers, then combined with the planes
+  int count = 0;
+  void add(const Vec3& p, std::uint32_t id) {
+    if (count < kCapacity) points[count] = p, ids[count++] = id;
+  }
+};
+
+// One Sutherland-Hodgman step, as clipPolygon() (the same points, ids and order), on the stack,
+// with each point's distance to the plane computed once.
+void clipFace(const FacePolygon& polygon, const Vec3& plane_normal, double plane_offset, std::uint32_t plane_id,
+              FacePolygon& out) {
+  std::array<double, FacePolygon::kCapacity> d;
+  for (int i = 0; i < polygon.count; ++i) d[i] = plane_normal.dot(polygon.points[i]) - plane_offset;
+  out.count = 0;
+  for (int i = 0; i < polygon.count; ++i) {
+    const int next = i + 1 < polygon.count ? i + 1 : 0;
+    const double dp = d[i], dq = d[next];
+    if (dp <= 0.0) out.add(polygon.points[i], polygon.ids[i]);
+    if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) {
+      const Vec3 &p = polygon.points[i], &q = polygon.points[next];
+      out.add(p + dp / (dp - dq) * (q - p), combineFeatures(polygon.ids[i], plane_id));
+    }
+  }
 }
 
 // Squared distance of q from p in the plane normal to n.
@@ -123,39 +155,54 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
   validatePose(pose_a, "pose_a");
   validateShape(b, "shape b");
   validatePose(pose_b, "pose_b");
+  // Express B in A's frame once: every axis test below reads these numbers and multiplies no matrix
+  // (column j of R = R_A^T R_B is b_j in A's axes; t_A, t_B are x_A - x_B in A's and B's axes)
   const Mat3 Ra = pose_a.q.toRotationMatrix(), Rb = pose_b.q.toRotationMatrix();
+  const Mat3 R = Ra.transpose() * Rb, absR = R.cwiseAbs();
   const Vec3 &ha = a.half_extents, &hb = b.half_extents;
   const Vec3 t = pose_a.x - pose_b.x;
-  // Measure the overlap along an axis: radii of both projections minus the centres' distance
-  auto overlapAlong = [&](const Vec3& L) {
-    const double ra = (Ra.transpose() * L).cwiseAbs().dot(ha), rb = (Rb.transpose() * L).cwiseAbs().dot(hb);
-    return ra + rb - std::abs(t.dot(L));
-  };
+  const Vec3 ta = Ra.transpose() * t, tb = Rb.transpose() * t;
   // Test the 6 face axes; any positive gap is a separating plane
-  Axis face, edge;
-  for (int k = 0; k < 6; ++k) {
-    const Vec3 L = k < 3 ? Vec3(Ra.col(k)) : Vec3(Rb.col(k - 3));
-    const double overlap = overlapAlong(L);
+  // (along a_k: r_A = h_A,k, r_B = sum_j |R_kj| h_B,j; along b_k the same with R's column)
+  Axis face;
+  for (int k = 0; k < 3; ++k) {
+    const double overlap = ha[k] + absR.row(k).dot(hb) - std::abs(ta[k]);
     if (overlap < 0.0) return Manifold{};
-    if (clearlyBelow(overlap, face.overlap)) face = {overlap, t.dot(L) >= 0.0 ? L : Vec3(-L), k};
+    if (clearlyBelow(overlap, face.overlap)) face = {overlap, ta[k] >= 0.0 ? Vec3(Ra.col(k)) : Vec3(-Ra.col(k)), k};
+  }
+  for (int k = 0; k < 3; ++k) {
+    const double overlap = absR.col(k).dot(ha) + hb[k] - std::abs(tb[k]);
+    if (overlap < 0.0) return Manifold{};
+    if (clearlyBelow(overlap, face.overlap)) face = {overlap, tb[k] >= 0.0 ? Vec3(Rb.col(k)) : Vec3(-Rb.col(k)), 3 + k};
   }
   // Test the 9 edge-pair axes, skipping (near-)parallel edges whose faces were already tested
+  // (in A's frame L = e_i x (column j of R), so radii and distance are two products each; neither
+  // the test nor the ranking needs |L|: g / |L| < g* / |L*| for overlaps g, g* >= 0 along the
+  // unnormalised axes is g^2 |L*|^2 < g*^2 |L|^2, so only the winner is divided by |L|)
+  double best_g = 0.0, best_length2 = 0.0;
+  int best_edge = -1;
   for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
-      Vec3 L = Ra.col(i).cross(Rb.col(j));
-      const double length = L.norm();
-      if (length < 1e-6) continue;
-      L /= length;
-      const double overlap = overlapAlong(L);
-      if (overlap < 0.0) return Manifold{};
-      if (overlap < edge.overlap) edge = {overlap, t.dot(L) >= 0.0 ? L : Vec3(-L), 3 * i + j};
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double length2 = R(i1, j) * R(i1, j) + R(i2, j) * R(i2, j);
+      if (length2 < 1e-12) continue;
+      const double ra = ha[i1] * absR(i2, j) + ha[i2] * absR(i1, j);
+      const double rb = hb[j1] * absR(i, j2) + hb[j2] * absR(i, j1);
+      const double g = ra + rb - std::abs(ta[i2] * R(i1, j) - ta[i1] * R(i2, j));
+      if (g < 0.0) return Manifold{};
+      if (best_edge < 0 || g * g * best_length2 < best_g * best_g * length2) best_g = g, best_length2 = length2, best_edge = 3 * i + j;
     }
   }
   // Prefer a face axis unless an edge axis is clearly shallower
-  if (edge.feature >= 0 && edge.overlap < (1.0 - kEdgeAxisBias) * face.overlap) {
+  if (best_edge >= 0 && best_g / std::sqrt(best_length2) < (1.0 - kEdgeAxisBias) * face.overlap) {
     // Edge-edge: one point between the two edges that reach furthest towards each other
-    const int i = edge.feature / 3, j = edge.feature % 3;
-    const Vec3& n = edge.normal;
+    // (on the winner's unit world axis, its depth measured along that axis: the ranking above
+    // divided by a length made of R's entries, exact only for an exactly orthonormal R)
+    const int i = best_edge / 3, j = best_edge % 3;
+    const Vec3 L = Ra.col(i).cross(Rb.col(j)).normalized();
+    const Vec3 n = t.dot(L) >= 0.0 ? L : Vec3(-L);
+    const double depth = (Ra.transpose() * L).cwiseAbs().dot(ha) + (Rb.transpose() * L).cwiseAbs().dot(hb) - std::abs(t.dot(L));
     Vec3 ca = pose_a.x, cb = pose_b.x;
     std::uint32_t code_a = 0, code_b = 0;
     for (int k = 0; k < 3; ++k) {
@@ -168,8 +215,8 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
     const std::array<double, 2> st = closestSegmentParameters(pa, qa, pb, qb);
     Manifold m;
     m.normal = n;
-    m.add(0.5 * (pa + st[0] * (qa - pa) + pb + st[1] * (qb - pb)), edge.overlap,
-          combineFeatures(100 + edge.feature, 8 * code_a + code_b));
+    m.add(0.5 * (pa + st[0] * (qa - pa) + pb + st[1] * (qb - pb)), depth,
+          combineFeatures(100 + best_edge, 8 * code_a + code_b));
     return m;
   }
   // Face: the reference face is the winner's face towards the other box
@@ -189,26 +236,45 @@ Manifold collideBoxBox(const Box& a, const Pose& pose_a, const Box& b, const Pos
   const int u = (m_axis + 1) % 3, v = (m_axis + 2) % 3;
   Vec3 corner_signs = Vec3::Zero();
   corner_signs[m_axis] = along[m_axis] > 0.0 ? -1.0 : 1.0;
-  ContactPolygon polygon;
+  FacePolygon polygon, clipped;
   const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
   for (int k = 0; k < 4; ++k) {
     corner_signs[u] = su[k];
     corner_signs[v] = sv[k];
     const std::uint32_t corner = (corner_signs.x() > 0) + 2 * (corner_signs.y() > 0) + 4 * (corner_signs.z() > 0);
-    polygon.add(xi + Ri * corner_signs.cwiseProduct(hi), 0.0, corner);
+    polygon.add(xi + Ri * corner_signs.cwiseProduct(hi), corner);
   }
   // Clip it by the four side planes of the reference face
   std::uint32_t plane_id = 0;
   for (int k = 1; k <= 2; ++k) {
     const Vec3 side = Rr.col((axis + k) % 3);
     const double extent = hr[(axis + k) % 3], centre = side.dot(xr);
-    polygon = clipPolygon(polygon, side, centre + extent, plane_id++);
-    polygon = clipPolygon(polygon, -side, -centre + extent, plane_id++);
+    clipFace(polygon, side, centre + extent, plane_id++, clipped);
+    clipFace(clipped, -side, -centre + extent, plane_id++, polygon);
   }
   // Keep the points below the reference face, at most 4
+  // (moved half their depth up to the midpoint, compacted in place; reduceContacts returns 4 or
+  // fewer as they are, so only a larger set pays for its 64-point candidate buffer)
   const std::uint32_t face_id = 2 * face.feature + (n_ref.dot(Rr.col(axis)) > 0.0);
-  const ContactPolygon below = keepBelow(polygon, n_ref, n_ref.dot(xr) + hr[axis], face_id);
-  if (below.count == 0) return Manifold{};
+  const double offset = n_ref.dot(xr) + hr[axis];
+  std::array<double, FacePolygon::kCapacity> depth;
+  int kept = 0;
+  for (int k = 0; k < polygon.count; ++k) {
+    const Vec3 p = polygon.points[k];
+    depth[kept] = offset - n_ref.dot(p);
+    if (depth[kept] < 0.0) continue;
+    polygon.points[kept] = p + 0.5 * depth[kept] * n_ref;
+    polygon.ids[kept++] = combineFeatures(face_id, polygon.ids[k]);
+  }
+  if (kept == 0) return Manifold{};
+  if (kept <= Manifold::kMaxPoints) {
+    Manifold m;
+    m.normal = face.normal;
+    for (int k = 0; k < kept; ++k) m.add(polygon.points[k], depth[k], polygon.ids[k]);
+    return m;
+  }
+  ContactPolygon below;
+  for (int k = 0; k < kept; ++k) below.add(polygon.points[k], depth[k], polygon.ids[k]);
   return reduceContacts(face.normal, below);
 }
 

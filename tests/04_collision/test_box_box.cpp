@@ -249,6 +249,55 @@ TEST_CASE("box-box: the normal is the axis of least overlap over the 15 axes", "
   CHECK(touching > 20);  // extreme points pushed into each other: most trials touch
 }
 
+TEST_CASE("box-box: every contact point is the midpoint of two surface points, one on each box, its depth apart along the normal", "[lab04][pts=1][sec=5]") {
+  // How far a point lies outside a box (negative inside, 0 on its surface).
+  const auto outside = [](const Box& box, const Pose& pose, const Vec3& p) {
+    return (pose.toBody(p).cwiseAbs() - box.half_extents).maxCoeff();
+  };
+  // With n from B to A, A's surface point is p - d/2 n and B's p + d/2 n.
+  const auto onBothSurfaces = [&](const Box& a, const Pose& pa, const Box& b, const Pose& pb, const Manifold& m) {
+    for (int k = 0; k < m.count; ++k) {
+      const ContactPoint& c = m.points[k];
+      INFO("point " << k << ", depth " << c.depth);
+      CHECK(c.depth >= 0.0);
+      CHECK(std::abs(outside(a, pa, c.position - 0.5 * c.depth * m.normal)) < 1e-9);  // round-off of the rotations
+      CHECK(std::abs(outside(b, pb, c.position + 0.5 * c.depth * m.normal)) < 1e-9);  // round-off of the rotations
+    }
+  };
+  // Fixed: a unit cube turned 30 degrees about z sunk 0.1 into a 4 x 4 x 1 slab's top face
+  // touches at its 4 bottom corners, each 0.1 deep, halfway between z = 0.4 and z = 0.5.
+  {
+    const Box a(Vec3(0.5, 0.5, 0.5)), b(Vec3(2.0, 2.0, 0.5));
+    Pose pa, pb;
+    pa.x = Vec3(0.3, -0.2, 0.9);
+    pa.q = Quat(Eigen::AngleAxisd(M_PI / 6, Vec3::UnitZ()));
+    const Manifold m = collideBoxBox(a, pa, b, pb);
+    REQUIRE(m.count == 4);
+    CHECK((m.normal - Vec3::UnitZ()).norm() < 1e-12);  // a face column of the identity, exactly
+    for (int k = 0; k < m.count; ++k) {
+      CHECK(m.points[k].depth == Approx(0.1).margin(1e-12));  // differences of numbers near 1
+      CHECK(m.points[k].position.z() == Approx(0.45).margin(1e-12));
+      const Vec3 corner = pa.toBody(m.points[k].position - Vec3(0.0, 0.0, 0.05));
+      CHECK(corner.cwiseAbs().isApprox(Vec3(0.5, 0.5, 0.5), 1e-12));  // a bottom corner of A
+    }
+    onBothSurfaces(a, pa, b, pb, m);
+  }
+  // Seeded random boxes pressed into each other along random directions: faces and edges alike.
+  int touching = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Box a(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
+    const Box b(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
+    Pose pa = randomPose(1.0), pb = randomPose(1.0);
+    Shape sb = b;
+    placeAlong(Shape(a), pa, sb, pb, randomUnit(), -uniform(0.01, 0.3));
+    const Manifold m = collideBoxBox(a, pa, b, pb);
+    INFO("trial " << trial);
+    touching += !m.empty();
+    onBothSurfaces(a, pa, b, pb, m);
+  }
+  CHECK(touching > 150);  // extreme points pushed into each other: most trials touch
+}
+
 TEST_CASE("clipping: a square cut by a plane keeps its inside part and the two crossings", "[lab04][pts=1][sec=5]") {
   ContactPolygon square;
   square.add(Vec3(-1, -1, 0), 0.1, 1);

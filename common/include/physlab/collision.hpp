@@ -24,6 +24,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -49,10 +50,22 @@ struct Pose {
   Vec3 toBody(const Vec3& p_world) const { return q.conjugate() * (p_world - x); }
 };
 
+/// \cond INTERNAL
+// The checks of validatePose() that name the fault (shapes.cpp).
+void refuseBadPose(const Pose& pose, std::string_view what);
+/// \endcond
+
 /// Throws InvalidInput naming `what` when the pose has a non-finite position or a quaternion that
 /// is not finite and of unit norm (within 1e-6). Every Lab 4 routine calls it on its poses before
 /// using them; it allocates nothing unless it throws.
-void validatePose(const Pose& pose, std::string_view what);
+inline void validatePose(const Pose& pose, std::string_view what) {
+  // Inline, as every narrow-phase call pays it: the common case in a few instructions (every
+  // entry finite, by one sum; |q|^2 within the bounds of |q| in [1 - 1e-6, 1 + 1e-6]), the checks
+  // that name the fault out of line
+  constexpr double kLow = (1.0 - 1e-6) * (1.0 - 1e-6), kHigh = (1.0 + 1e-6) * (1.0 + 1e-6);
+  const double norm2 = pose.q.squaredNorm();
+  if (!(std::isfinite(pose.x.sum() + norm2) && norm2 >= kLow && norm2 <= kHigh)) refuseBadPose(pose, what);
+}
 
 /// Constant velocities of a body over one step, world frame.
 struct Motion {
@@ -148,11 +161,22 @@ using Shape = std::variant<Sphere, Box, Capsule, Plane, ConvexPolyhedron, Triang
 /// check here is linear in its size, the others' constant. Allocates nothing unless it throws.
 void validateShape(const Shape& shape, std::string_view what);
 void validateShape(const Sphere& sphere, std::string_view what);              ///< as for a Shape
-void validateShape(const Box& box, std::string_view what);                    ///< as for a Shape
+inline void validateShape(const Box& box, std::string_view what);             ///< as for a Shape
 void validateShape(const Capsule& capsule, std::string_view what);            ///< as for a Shape
 void validateShape(const Plane& plane, std::string_view what);                ///< as for a Shape
 void validateShape(const ConvexPolyhedron& polyhedron, std::string_view what);  ///< as for a Shape
 void validateShape(const Triangle& triangle, std::string_view what);          ///< as for a Shape
+
+/// \cond INTERNAL
+// The checks of validateShape(Box) that name the fault (shapes.cpp).
+void refuseBadBox(const Box& box, std::string_view what);
+/// \endcond
+
+// Inline, as every narrow-phase call pays it: the common case in a few instructions (every extent
+// finite, by one sum, and positive), the checks that name the fault out of line.
+inline void validateShape(const Box& box, std::string_view what) {
+  if (!(std::isfinite(box.half_extents.sum()) && box.half_extents.minCoeff() > 0.0)) refuseBadBox(box, what);
+}
 
 /// A short name of the shape's kind: "sphere", "box", "capsule", "plane", "convex polyhedron",
 /// "triangle".

@@ -47,12 +47,7 @@ void requireLength(double value, std::string_view what, const char* field) {
 
 }  // namespace
 
-void validatePose(const Pose& pose, std::string_view what) {
-  // The common case in a few instructions: every entry finite (one sum) and |q|^2 within the
-  // bounds of |q| in [1 - 1e-6, 1 + 1e-6]; the checks that name the fault only on failure
-  constexpr double kLow = (1.0 - 1e-6) * (1.0 - 1e-6), kHigh = (1.0 + 1e-6) * (1.0 + 1e-6);
-  const double norm2 = pose.q.squaredNorm();
-  if (std::isfinite(pose.x.sum() + norm2) && norm2 >= kLow && norm2 <= kHigh) return;
+void refuseBadPose(const Pose& pose, std::string_view what) {
   if (const Index k = firstNonFinite(pose.x); k >= 0) {
     refuse(what, " position has a non-finite entry at (" + std::to_string(k) + ", 0)");
   }
@@ -75,7 +70,7 @@ void validateMotion(const Motion& motion, std::string_view what) {
 
 void validateShape(const Sphere& sphere, std::string_view what) { requireLength(sphere.radius, what, "sphere radius"); }
 
-void validateShape(const Box& box, std::string_view what) {
+void refuseBadBox(const Box& box, std::string_view what) {
   static constexpr const char* fields[] = {"box half extent 0", "box half extent 1", "box half extent 2"};
   for (int i = 0; i < 3; ++i) requireLength(box.half_extents[i], what, fields[i]);
 }
