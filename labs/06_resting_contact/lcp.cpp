@@ -63,10 +63,10 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   // TODO(student): w_i <-> f_i; count pivots, LcpFailure past max(options.max_iterations, 10 n).
   // Find the leaving row by the minimum ratio test; ties broken lexicographically by the
   // rows of B^-1 (the tableau's first n columns), which never cycles
-  // Entries below sqrt(pivot_tolerance) of the column's largest are no pivots: redundant
-  // contacts make entries that are zero in exact arithmetic and round-off of the eliminations
-  // here, and dividing by one would wreck the tableau (lcp.hpp says why this size)
-  // TODO(student): eligible rows: entry > sqrt(pivot_tolerance) * largest |entry| of the column;
+  // Entries below the run's fraction of the column's largest are no pivots: redundant contacts
+  // make entries that are zero in exact arithmetic and round-off of the eliminations here, and
+  // dividing by one would wreck the tableau (lcp.hpp says why these sizes)
+  // TODO(student): eligible rows: entry > fraction * max(floor, largest |entry| of the column), the run's two numbers;
   // TODO(student): none eligible: throw LcpFailure("... ray termination ...").
   // z0 leaving among the ties ends the method at once
   // TODO(student): otherwise compare the tied rows' entries in columns 0, 1, ... divided by the pivot entry, keeping the smallest.
@@ -76,6 +76,15 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   // Read f from the basic variables (round-off may leave -1e-17: clamp to the contract's f >= 0)
   // TODO(student): f_i = right-hand side of the row where f_i is basic, 0 when nonbasic; w = A f + b; residual;
   // TODO(student): LcpFailure("... lost accuracy ...") as in pivoting.
+  // First run: only entries within n pivot_tolerance of max(1, the column's largest) are no
+  // pivots, so the answer is as accurate as the tableau's round-off allows. Redundant contacts
+  // (a pyramid's four corners per face) make entries that are zero in exact arithmetic and that
+  // size above it, and pivoting on one loses accuracy: then run again with every entry below
+  // sqrt(pivot_tolerance) of the column's largest left out, an answer to within the accuracy
+  // bound. Either way, iterations counts every pivot made
+  // TODO(student): write the steps above as one run taking (fraction, floor): first (n * pivot_tolerance, 1); when it
+  // TODO(student): lost accuracy (not on a ray or at the limit), again from the start with (sqrt(pivot_tolerance), 0);
+  // TODO(student): iterations = the pivots of both runs.
   notImplemented("solveLcpLemke", "Lab 6 handout, section 4", A, b, options);
 }
 

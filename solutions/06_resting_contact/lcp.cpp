@@ -34,9 +34,15 @@ double accuracyBound(const VecX& b, const LcpOptions& options) {
   return std::sqrt(options.pivot_tolerance) * std::max(1.0, b.lpNorm<Eigen::Infinity>());
 }
 
+// The LcpFailure of an answer that lost accuracy to round-off (Lemke runs again on it).
+class LostAccuracy : public LcpFailure {
+ public:
+  using LcpFailure::LcpFailure;
+};
+
 void requireAccurate(const LcpSolution& s, const VecX& b, const LcpOptions& options, const std::string& what) {
   if (!(s.residual <= accuracyBound(b, options))) {
-    throw LcpFailure(what + ": lost accuracy after " + std::to_string(s.iterations) + " pivots (residual " +
+    throw LostAccuracy(what + ": lost accuracy after " + std::to_string(s.iterations) + " pivots (residual " +
                      std::to_string(s.residual) + ")");
   }
 }
@@ -168,17 +174,16 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   return s;
 }
 
-LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& options) {
-  validateLcp(A, b, "solveLcpLemke");
-  validateOptions(options, "solveLcpLemke");
+namespace {
+
+// One run of Lemke's method on a checked LCP with some b_i < 0, where an entry of the entering
+// column is a pivot only above `fraction` times max(`floor`, the column's largest |entry|);
+// `pivots` counts each pivot made. LcpFailure on a ray, at the pivot limit, and on lost accuracy.
+LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, double fraction, double floor,
+                     int& pivots) {
   const Index n = b.size();
   LcpSolution s;
   s.f = VecX::Zero(n);
-  // f = 0 already solves it when b >= 0
-  if (n == 0 || b.minCoeff() >= 0.0) {
-    s.w = b;
-    return s;
-  }
   // Build the tableau [I | -A | -e | b] of w - A f - e z0 = b; variables 0..n-1 are w, n..2n-1 f, 2n z0
   const Index z0 = 2 * n, rhs = 2 * n + 1;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> T(n, 2 * n + 2);
@@ -206,6 +211,7 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   Index leaving = basis[static_cast<std::size_t>(row)];
   pivot(row, z0);
   s.iterations = 1;
+  ++pivots;
 
   // Let the complement of the leaving variable enter until z0 leaves
   while (leaving != z0) {
@@ -217,10 +223,10 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
     // rows of B^-1 (the tableau's first n columns), which never cycles
     std::vector<Index> candidates;
     double best = kInfinity;
-    // Entries below sqrt(pivot_tolerance) of the column's largest are no pivots: redundant
-    // contacts make entries that are zero in exact arithmetic and round-off of the eliminations
-    // here, and dividing by one would wreck the tableau (lcp.hpp says why this size)
-    const double eligible = std::sqrt(options.pivot_tolerance) * T.col(entering).cwiseAbs().maxCoeff();
+    // Entries below the run's fraction of the column's largest are no pivots: redundant contacts
+    // make entries that are zero in exact arithmetic and round-off of the eliminations here, and
+    // dividing by one would wreck the tableau (lcp.hpp says why these sizes)
+    const double eligible = fraction * std::max(floor, T.col(entering).cwiseAbs().maxCoeff());
     for (Index i = 0; i < n; ++i) {
       if (T(i, entering) > eligible) best = std::min(best, T(i, rhs) / T(i, entering));
     }
@@ -252,10 +258,11 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
     leaving = basis[static_cast<std::size_t>(row)];
     pivot(row, entering);
     ++s.iterations;
+    ++pivots;
     // The basic values stay >= 0 in exact arithmetic; one far below 0 is round-off that has
     // already wrecked the tableau: stop now rather than pivot on to the limit
     if (T.col(rhs).minCoeff() < -feasibility) {
-      throw LcpFailure("solveLcpLemke: lost accuracy after " + std::to_string(s.iterations) +
+      throw LostAccuracy("solveLcpLemke: lost accuracy after " + std::to_string(s.iterations) +
                        " pivots (a basic variable fell to " + std::to_string(T.col(rhs).minCoeff()) + ")");
     }
   }
@@ -269,6 +276,37 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   s.residual = lcpResidual(A, b, s.f);
   requireAccurate(s, b, options, "solveLcpLemke");
   return s;
+}
+
+}  // namespace
+
+LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& options) {
+  validateLcp(A, b, "solveLcpLemke");
+  validateOptions(options, "solveLcpLemke");
+  const Index n = b.size();
+  // f = 0 already solves it when b >= 0
+  if (n == 0 || b.minCoeff() >= 0.0) {
+    LcpSolution s;
+    s.f = VecX::Zero(n);
+    s.w = b;
+    return s;
+  }
+  // First run: only entries within n pivot_tolerance of max(1, the column's largest) are no
+  // pivots, so the answer is as accurate as the tableau's round-off allows. Redundant contacts
+  // (a pyramid's four corners per face) make entries that are zero in exact arithmetic and that
+  // size above it, and pivoting on one loses accuracy: then run again with every entry below
+  // sqrt(pivot_tolerance) of the column's largest left out, an answer to within the accuracy
+  // bound. Either way, iterations counts every pivot made
+  int pivots = 0;
+  try {
+    LcpSolution s = lemkeRun(A, b, options, options.pivot_tolerance * static_cast<double>(n), 1.0, pivots);
+    s.iterations = pivots;
+    return s;
+  } catch (const LostAccuracy&) {
+    LcpSolution s = lemkeRun(A, b, options, std::sqrt(options.pivot_tolerance), 0.0, pivots);
+    s.iterations = pivots;
+    return s;
+  }
 }
 
 LcpSolution solveLcpPgs(const MatX& A, const VecX& b, const LcpOptions& options, std::vector<double>* residuals) {

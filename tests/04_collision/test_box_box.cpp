@@ -2,6 +2,7 @@
 // with known answers, clipping and reduction, and convex polyhedra against boxes.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "collision_support.hpp"
@@ -64,6 +65,17 @@ double leastOverlap15(const Box& a, const Pose& pa, const Box& b, const Pose& pb
     least = std::min({least, overlapAlong(a, pa, b, pb, L), overlapAlong(a, pa, b, pb, -L)});
   }
   return least;
+}
+
+// Two seeded random boxes at random poses, pressed into each other along a random direction by
+// 0.01 to 0.3 (placeAlong: their extreme points that far past each other).
+std::tuple<Box, Pose, Box, Pose> pressedBoxes() {
+  const Box a(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
+  const Box b(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
+  Pose pa = randomPose(1.0), pb = randomPose(1.0);
+  Shape sb = b;
+  placeAlong(Shape(a), pa, sb, pb, randomUnit(), -uniform(0.01, 0.3));
+  return {a, pa, b, pb};
 }
 
 }  // namespace
@@ -221,11 +233,7 @@ TEST_CASE("box-box: crossed edges touch at one point between the two edges", "[l
 TEST_CASE("box-box: the normal is the axis of least overlap over the 15 axes", "[lab04][pts=2][sec=5]") {
   int touching = 0;
   for (int trial = 0; trial < 40; ++trial) {
-    const Box a(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
-    const Box b(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
-    Pose pa = randomPose(1.0), pb = randomPose(1.0);
-    Shape sb = b;
-    placeAlong(Shape(a), pa, sb, pb, randomUnit(), -uniform(0.01, 0.3));
+    const auto [a, pa, b, pb] = pressedBoxes();
     const Manifold m = collideBoxBox(a, pa, b, pb);
     const double least = leastOverlap15(a, pa, b, pb);
     INFO("trial " << trial << ", least overlap " << least);
@@ -285,11 +293,7 @@ TEST_CASE("box-box: every contact point is the midpoint of two surface points, o
   // Seeded random boxes pressed into each other along random directions: faces and edges alike.
   int touching = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const Box a(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
-    const Box b(Vec3(uniform(0.2, 1.0), uniform(0.2, 1.0), uniform(0.2, 1.0)));
-    Pose pa = randomPose(1.0), pb = randomPose(1.0);
-    Shape sb = b;
-    placeAlong(Shape(a), pa, sb, pb, randomUnit(), -uniform(0.01, 0.3));
+    const auto [a, pa, b, pb] = pressedBoxes();
     const Manifold m = collideBoxBox(a, pa, b, pb);
     INFO("trial " << trial);
     touching += !m.empty();

@@ -149,6 +149,17 @@ class SoftStepSolver : public RestingContactSolver {
     double pushed = 0.0;                          // largest normal impulse of the step [N s]
     Vec3 lambda = Vec3::Zero();                   // accumulated impulses of the substep (n, t, o) [N s]
     Vec3 total = Vec3::Zero();                    // their sum over the step [N s]
+    /// The relative velocity of the touching points along row i (0: n, 1: t, 2: o) [m/s].
+    double velocity(const ContactBody& A, const ContactBody& B, int i) const {
+      return d[i].dot(A.v - B.v) + ang_a[i].dot(A.omega) - ang_b[i].dot(B.omega);
+    }
+    /// Applies the impulse `change` [N s] along row i: +d_i to A, -d_i to B.
+    void apply(ContactBody& A, ContactBody& B, int i, double change) const {
+      A.v += (A.inv_mass * change) * d[i];
+      A.omega += change * turn_a[i];
+      B.v -= (B.inv_mass * change) * d[i];
+      B.omega -= change * turn_b[i];
+    }
   };
   void sweep(std::vector<ContactBody>& bodies, double h_s, bool relax);
 

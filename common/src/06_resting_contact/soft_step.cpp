@@ -101,12 +101,7 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     }
     for (const Point& pt : points_) {
       ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
-      for (int i = 0; i < 3; ++i) {
-        A.v += (A.inv_mass * pt.lambda(i)) * pt.d[i];
-        A.omega += pt.lambda(i) * pt.turn_a[i];
-        B.v -= (B.inv_mass * pt.lambda(i)) * pt.d[i];
-        B.omega -= pt.lambda(i) * pt.turn_b[i];
-      }
+      for (int i = 0; i < 3; ++i) pt.apply(A, B, i, pt.lambda(i));
     }
     for (int i = 0; i < settings_.solve_iterations; ++i) sweep(bodies, h_s, false);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -128,13 +123,9 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   for (Point& pt : points_) {
     if (!pt.bounce || pt.pushed <= 0.0) continue;
     ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
-    const double v_n = pt.d[0].dot(A.v - B.v) + pt.ang_a[0].dot(A.omega) - pt.ang_b[0].dot(B.omega);
-    const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (v_n - pt.target));
+    const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (pt.velocity(A, B, 0) - pt.target));
     const double change = lambda - pt.lambda(0);
-    A.v += (A.inv_mass * change) * pt.d[0];
-    A.omega += change * pt.turn_a[0];
-    B.v -= (B.inv_mass * change) * pt.d[0];
-    B.omega -= change * pt.turn_b[0];
+    pt.apply(A, B, 0, change);
     pt.lambda(0) = lambda;
     pt.total(0) += change;
   }
@@ -154,31 +145,21 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 void SoftStepSolver::sweep(std::vector<ContactBody>& bodies, double h_s, bool relax) {
   for (Point& pt : points_) {
     ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
-    const double v_n = pt.d[0].dot(A.v - B.v) + pt.ang_a[0].dot(A.omega) - pt.ang_b[0].dot(B.omega);
+    const double v_n = pt.velocity(A, B, 0);
     // The anchors moved with their bodies: the gap now, to first order in the rotation
     const double s = -pt.depth + pt.d[0].dot(dx_[pt.a] - dx_[pt.b]) + pt.ang_a[0].dot(dtheta_[pt.a]) -
                      pt.ang_b[0].dot(dtheta_[pt.b]);
     const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, s, pt.mass[0], pt.soft_fixed ? soft_fixed_ : soft_,
                                               h_s, settings_.max_push, relax);
-    const double dn = lambda_n - pt.lambda(0);
-    A.v += (A.inv_mass * dn) * pt.d[0];
-    A.omega += dn * pt.turn_a[0];
-    B.v -= (B.inv_mass * dn) * pt.d[0];
-    B.omega -= dn * pt.turn_b[0];
+    pt.apply(A, B, 0, lambda_n - pt.lambda(0));
     pt.lambda(0) = lambda_n;
     // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc
-    const Vec3 relative = A.v - B.v;
-    const double v_t = pt.d[1].dot(relative) + pt.ang_a[1].dot(A.omega) - pt.ang_b[1].dot(B.omega);
-    const double v_o = pt.d[2].dot(relative) + pt.ang_a[2].dot(A.omega) - pt.ang_b[2].dot(B.omega);
-    Eigen::Vector2d lambda_T(pt.lambda(1) - pt.mass[1] * v_t, pt.lambda(2) - pt.mass[2] * v_o);
+    Eigen::Vector2d lambda_T(pt.lambda(1) - pt.mass[1] * pt.velocity(A, B, 1),
+                             pt.lambda(2) - pt.mass[2] * pt.velocity(A, B, 2));
     const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
     if (length2 > radius * radius) lambda_T *= radius > 0.0 ? radius / std::sqrt(length2) : 0.0;
-    const double dt = lambda_T(0) - pt.lambda(1), d_o = lambda_T(1) - pt.lambda(2);
-    const Vec3 push = dt * pt.d[1] + d_o * pt.d[2];
-    A.v += A.inv_mass * push;
-    A.omega += dt * pt.turn_a[1] + d_o * pt.turn_a[2];
-    B.v -= B.inv_mass * push;
-    B.omega -= dt * pt.turn_b[1] + d_o * pt.turn_b[2];
+    pt.apply(A, B, 1, lambda_T(0) - pt.lambda(1));
+    pt.apply(A, B, 2, lambda_T(1) - pt.lambda(2));
     pt.lambda(1) = lambda_T(0);
     pt.lambda(2) = lambda_T(1);
   }
