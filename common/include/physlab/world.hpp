@@ -328,9 +328,10 @@ class RestingContactSolver {
                     const std::vector<BodyDescription>& descriptions, const std::vector<BodyState>& states,
                     const Vec3& gravity, double h) = 0;
   /// Sub-stepping solvers (Lab 6's soft step) move the bodies while they solve. World::step() calls
-  /// this in its integrate phase after a step whose solve() ran: such a solver writes every moving
-  /// body's new centre x and orientation q into `states` and returns true, and the World then
-  /// integrates nothing itself. The default returns false: the World integrates the velocities.
+  /// this in the integrate phase of every step: a solver whose solve() moved the bodies in this
+  /// step writes every moving body's new centre x and orientation q into `states` and returns
+  /// true, and the World then integrates nothing itself; otherwise (and by default) it returns
+  /// false and the World integrates the velocities.
   virtual bool placeBodies(std::vector<BodyState>& states) {
     (void)states;
     return false;
@@ -407,7 +408,6 @@ class World {
   std::vector<Mat3> inv_inertia_body_;     // I_body^-1 once, 0 when fixed
   PairList found_;                         // the broad phase's pairs, refilled in place
   std::vector<int> resting_;
-  bool resting_solved_ = false;  // the resting solver ran this step (it may have moved the bodies)
   Diagnostics diagnostics_;
   PhaseTimes times_;
   double time_ = 0.0;

@@ -380,7 +380,6 @@ const World::LastImpulse* World::lastImpulse(const Contact& c) const {
 
 void World::respond(double h) {
   diagnostics_.iterations = 0;
-  resting_solved_ = false;
   if (contacts_.empty()) return;
   {
     PhaseTimer timer(times_.respond);
@@ -435,7 +434,6 @@ void World::solveRestingContacts(double h) {
   PhaseTimer timer(times_.resting);
   diagnostics_.iterations +=
       resting_solver_->solve(contact_bodies_, contacts_, resting_, bodies_, states_, settings_.gravity, h);
-  resting_solved_ = true;
 }
 
 void World::applyPenaltyForces(std::vector<Contact>& contacts, double h) {
@@ -450,7 +448,7 @@ void World::applyPenaltyForces(std::vector<Contact>& contacts, double h) {
 void World::integrate(double h) {
   PhaseTimer timer(times_.integrate);
   // A sub-stepping resting solver has moved the bodies already
-  if (resting_solved_ && resting_solver_->placeBodies(states_)) return;
+  if (resting_solver_ && resting_solver_->placeBodies(states_)) return;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     if (bodies_[i].fixed) continue;
     // Symplectic Euler: the new velocities move the body over the step
