@@ -1880,6 +1880,21 @@ def cmd_gradescope(args) -> int:
     return 0
 
 
+def cmd_stages(args) -> int:
+    """The labs `grade` with the same --labs and --course needs built: a bad lab or course file
+    falls back to every lab, so that the grade itself refuses it with its own message."""
+    every = discover_stages(ROOT)
+    try:
+        chosen = select_stages(every, args.labs)
+        if args.course:
+            labs = course_file.load(args.course).labs
+            chosen = [s for s in chosen if s in labs]
+    except (SystemExit, course_file.CourseError):
+        chosen = every
+    print("\n".join(chosen or every))
+    return 0
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -1918,7 +1933,14 @@ def main() -> int:
     package.add_argument("--out", required=True, help="the zip file to write")
     package.add_argument("--course", help="the course file the zip grades with (physlab/course.toml)")
     package.set_defaults(func=cmd_gradescope)
-    args = parser.parse_args()
+    stages = sub.add_parser("stages", help="the labs a grade with these arguments builds, one per line "
+                                           "(every lab when they name none or cannot be read)")
+    stages.add_argument("--labs", nargs="*", default=[])
+    stages.add_argument("--course")
+    stages.set_defaults(func=cmd_stages)
+    args, unknown = parser.parse_known_args()
+    if unknown and args.command != "stages":
+        parser.error("unrecognized arguments: " + " ".join(unknown))
     return args.func(args)
 
 

@@ -3,6 +3,7 @@
 hint tables: python3 tools/test_course.py (CI runs it; about a second, nothing built)."""
 
 import json
+import subprocess
 import sys
 import tempfile
 import tomllib
@@ -229,6 +230,31 @@ class Publish(Tree):
         (self.root / "docs").mkdir()
         self.assertEqual(course.publish(self.parse("[labs.01]\n"), self.root), [])
         self.assertEqual((self.root / "CMakeLists.txt").read_text(), "physlab_add_lab(01_alpha)\n")
+
+
+class GradeBuilds(unittest.TestCase):
+    """`./physlab grade` builds the tests of the labs it grades only (grader.py stages)."""
+
+    def stages(self, *args) -> list:
+        out = subprocess.run([sys.executable, str(Path(grader.__file__)), "stages", *args],
+                             check=True, capture_output=True, text=True).stdout
+        return out.split()
+
+    def test_a_course_builds_its_labs_only(self):
+        example = Path(grader.__file__).parent / "course-example.toml"
+        self.assertEqual(self.stages("labs", "--course", str(example)), list(course.load(example).labs))
+
+    def test_labs_named_on_the_command_line(self):
+        self.assertEqual(self.stages("labs", "--labs", "5", "03"), ["05_impulses", "03_rigid_bodies"])
+
+    def test_a_bad_course_or_lab_builds_every_lab_for_the_grade_to_refuse(self):
+        every = grader.discover_stages(grader.ROOT)
+        with tempfile.NamedTemporaryFile("w", suffix=".toml") as bad:
+            bad.write("labs = 3\n")
+            bad.flush()
+            self.assertEqual(self.stages("labs", "--course", bad.name), every)
+        self.assertEqual(self.stages("labs", "--labs", "99"), every)
+        self.assertEqual(self.stages("labs"), every)
 
 
 class Hints(Tree):
