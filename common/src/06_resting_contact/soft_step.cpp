@@ -42,11 +42,12 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   soft_fixed_ = softCoefficients(settings_.fixed_hertz_scale * settings_.contact_hertz, settings_.damping_ratio, h_s);
 
   // Gravity, applied by the World over h, comes back per substep; no motion yet
-  dx_.assign(bodies.size(), Vec3::Zero());
-  dtheta_.assign(bodies.size(), Vec3::Zero());
   dq_.assign(bodies.size(), Quat::Identity());
-  for (ContactBody& body : bodies) {
-    if (body.inv_mass > 0.0) body.v -= h * gravity;
+  motion_.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const ContactBody& body = bodies[i];
+    motion_[i] = {body.inv_mass > 0.0 ? Vec3(body.v - h * gravity) : body.v, body.omega, body.inv_mass, Vec3::Zero(),
+                  Vec3::Zero()};
   }
 
   // The sweep order: highest point first (along -gravity), or the World's
@@ -95,24 +96,22 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   }
 
   // The substeps: gravity, warm start, soft sweeps, positions, relax sweeps
+  const Vec3 dv = h_s * gravity;
   for (int step = 0; step < n; ++step) {
-    for (ContactBody& body : bodies) {
-      if (body.inv_mass > 0.0) body.v += h_s * gravity;
+    for (Motion& body : motion_) {
+      if (body.inv_mass > 0.0) body.v += dv;
     }
-    for (const Point& pt : points_) {
-      ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
-      for (int i = 0; i < 3; ++i) pt.apply(A, B, i, pt.lambda(i));
-    }
-    for (int i = 0; i < settings_.solve_iterations; ++i) sweep(bodies, h_s, false);
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const ContactBody& body = bodies[i];
+    for (const Point& pt : points_) pt.apply(motion_[pt.a], motion_[pt.b], pt.lambda, 0);
+    for (int i = 0; i < settings_.solve_iterations; ++i) sweep(h_s, false);
+    for (std::size_t i = 0; i < motion_.size(); ++i) {
+      Motion& body = motion_[i];
       if (!(body.inv_mass > 0.0)) continue;
-      dx_[i] += h_s * body.v;
+      body.dx += h_s * body.v;
       if (body.omega.isZero()) continue;
-      dtheta_[i] += h_s * body.omega;
+      body.dtheta += h_s * body.omega;
       dq_[i] = exponentialUpdate(dq_[i], body.omega, h_s);
     }
-    for (int r = 0; r < settings_.relax_iterations; ++r) sweep(bodies, h_s, true);
+    for (int r = 0; r < settings_.relax_iterations; ++r) sweep(h_s, true);
     for (Point& pt : points_) {
       pt.total += pt.lambda;
       pt.pushed = std::max(pt.pushed, pt.lambda(0));
@@ -122,7 +121,7 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   // Restitution: a colliding point that was pushed aims at its bounce, once
   for (Point& pt : points_) {
     if (!pt.bounce || pt.pushed <= 0.0) continue;
-    ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
+    Motion &A = motion_[pt.a], &B = motion_[pt.b];
     const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (pt.velocity(A, B, 0) - pt.target));
     const double change = lambda - pt.lambda(0);
     pt.apply(A, B, 0, change);
@@ -136,19 +135,22 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     c.j = pt.total(0);
     c.j_t = pt.total(1) * pt.d[1] + pt.total(2) * pt.d[2];
   }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].v = motion_[i].v;
+    bodies[i].omega = motion_[i].omega;
+  }
   moved_ = true;
   return n * (settings_.solve_iterations + settings_.relax_iterations);
 }
 
 // One Gauss-Seidel sweep over the points: the normal row by softNormalImpulse() at the separation
 // now, then friction on the disc of radius mu lambda_n
-void SoftStepSolver::sweep(std::vector<ContactBody>& bodies, double h_s, bool relax) {
+void SoftStepSolver::sweep(double h_s, bool relax) {
   for (Point& pt : points_) {
-    ContactBody &A = bodies[pt.a], &B = bodies[pt.b];
+    Motion &A = motion_[pt.a], &B = motion_[pt.b];
     const double v_n = pt.velocity(A, B, 0);
     // The anchors moved with their bodies: the gap now, to first order in the rotation
-    const double s = -pt.depth + pt.d[0].dot(dx_[pt.a] - dx_[pt.b]) + pt.ang_a[0].dot(dtheta_[pt.a]) -
-                     pt.ang_b[0].dot(dtheta_[pt.b]);
+    const double s = -pt.depth + pt.d[0].dot(A.dx - B.dx) + pt.ang_a[0].dot(A.dtheta) - pt.ang_b[0].dot(B.dtheta);
     const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, s, pt.mass[0], pt.soft_fixed ? soft_fixed_ : soft_,
                                               h_s, settings_.max_push, relax);
     pt.apply(A, B, 0, lambda_n - pt.lambda(0));
@@ -158,8 +160,7 @@ void SoftStepSolver::sweep(std::vector<ContactBody>& bodies, double h_s, bool re
                              pt.lambda(2) - pt.mass[2] * pt.velocity(A, B, 2));
     const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
     if (length2 > radius * radius) lambda_T *= radius > 0.0 ? radius / std::sqrt(length2) : 0.0;
-    pt.apply(A, B, 1, lambda_T(0) - pt.lambda(1));
-    pt.apply(A, B, 2, lambda_T(1) - pt.lambda(2));
+    pt.apply(A, B, Vec3(0.0, lambda_T(0) - pt.lambda(1), lambda_T(1) - pt.lambda(2)), 1);
     pt.lambda(1) = lambda_T(0);
     pt.lambda(2) = lambda_T(1);
   }
@@ -168,8 +169,8 @@ void SoftStepSolver::sweep(std::vector<ContactBody>& bodies, double h_s, bool re
 bool SoftStepSolver::placeBodies(std::vector<BodyState>& states) {
   if (!moved_) return false;
   moved_ = false;
-  for (std::size_t i = 0; i < states.size() && i < dx_.size(); ++i) {
-    states[i].x += dx_[i];
+  for (std::size_t i = 0; i < states.size() && i < motion_.size(); ++i) {
+    states[i].x += motion_[i].dx;
     states[i].q = (dq_[i] * states[i].q).normalized();
   }
   return true;
