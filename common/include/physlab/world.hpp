@@ -45,7 +45,6 @@
 #include <iosfwd>
 #include <memory>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "physlab/broadphase.hpp"
@@ -391,15 +390,24 @@ class World {
   std::vector<ContactBody> contact_bodies_;
   std::vector<BoxPair> pairs_;
   std::vector<Contact> contacts_;
-  // Last step's impulses by (A, B, feature id), sorted for binary search: refilled in place
+  // Last step's impulses in the contacts' order (a pair's points together), and the pairs' runs
+  // of them sorted by (A, B) for binary search: refilled in place
   struct LastImpulse {
-    std::tuple<int, int, std::uint32_t> key;
+    std::uint32_t id;
     Vec3 p;
     double j;
     Vec3 j_t;
   };
+  struct LastPair {
+    std::uint64_t key;  // A in the high 32 bits, B in the low
+    int begin, end;     // its points in last_impulses_
+  };
+  static std::uint64_t pairKey(int a, int b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  }
   const LastImpulse* lastImpulse(const Contact& c) const;
   std::vector<LastImpulse> last_impulses_;
+  std::vector<LastPair> last_pairs_;
   std::vector<int> bounded_, planes_;
   std::vector<Aabb> boxes_;
   std::unique_ptr<BroadPhase> broad_phase_;

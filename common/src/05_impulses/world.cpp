@@ -277,9 +277,15 @@ void World::computeContacts() {
   PhaseTimer timer(times_.narrow_phase);
   // Keep the last step's impulses by (A, B, feature id) for warm starting
   last_impulses_.clear();
-  for (const Contact& c : contacts_) last_impulses_.push_back({{c.a, c.b, c.id}, c.p, c.j, c.j_t});
-  std::sort(last_impulses_.begin(), last_impulses_.end(),
-            [](const LastImpulse& x, const LastImpulse& y) { return x.key < y.key; });
+  last_pairs_.clear();
+  for (const Contact& c : contacts_) {
+    const std::uint64_t key = pairKey(c.a, c.b);
+    const int k = static_cast<int>(last_impulses_.size());
+    if (last_pairs_.empty() || last_pairs_.back().key != key) last_pairs_.push_back({key, k, k});
+    ++last_pairs_.back().end;
+    last_impulses_.push_back({c.id, c.p, c.j, c.j_t});
+  }
+  std::sort(last_pairs_.begin(), last_pairs_.end(), [](const LastPair& x, const LastPair& y) { return x.key < y.key; });
   contacts_.clear();
   for (const BoxPair& pair : pairs_) {
     const int a = pair.first, b = pair.second;
@@ -362,17 +368,20 @@ void World::classifyContacts() {
 const World::LastImpulse* World::lastImpulse(const Contact& c) const {
   // A point farther than this from every last point of its pair is new [m]
   constexpr double kSamePoint = 0.01;
-  const auto first = std::lower_bound(last_impulses_.begin(), last_impulses_.end(), std::make_tuple(c.a, c.b, 0u),
-                                      [](const LastImpulse& x, const auto& k) { return x.key < k; });
+  const std::uint64_t key = pairKey(c.a, c.b);
   const LastImpulse* nearest = nullptr;
   double best = kSamePoint * kSamePoint;
-  for (auto last = first; last != last_impulses_.end() && std::get<0>(last->key) == c.a && std::get<1>(last->key) == c.b;
-       ++last) {
-    if (std::get<2>(last->key) == c.id) return &*last;
-    const double distance = (last->p - c.p).squaredNorm();
-    if (distance <= best) {
-      best = distance;
-      nearest = &*last;
+  for (auto pair = std::lower_bound(last_pairs_.begin(), last_pairs_.end(), key,
+                                    [](const LastPair& x, std::uint64_t k) { return x.key < k; });
+       pair != last_pairs_.end() && pair->key == key; ++pair) {
+    for (int k = pair->begin; k < pair->end; ++k) {
+      const LastImpulse& last = last_impulses_[static_cast<std::size_t>(k)];
+      if (last.id == c.id) return &last;
+      const double distance = (last.p - c.p).squaredNorm();
+      if (distance <= best) {
+        best = distance;
+        nearest = &last;
+      }
     }
   }
   return nearest;
