@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <Eigen/LU>
+#include <Eigen/SparseCore>
 
 #include "physlab/lcp.hpp"
 
@@ -58,29 +59,105 @@ VecX startingForces(const LcpOptions& options, Index n, bool cone = false) {
   return f;
 }
 
-// Direction of Dantzig's step: raise f_d by 1 and move the clamped forces so that every clamped
-// contact keeps w = 0, i.e. A_CC df_C = -A_Cd.
-VecX pivotingDirection(const MatX& A, const std::vector<Index>& clamped, Index d, double pivot_tolerance) {
-  VecX df = VecX::Zero(A.rows());
-  df(d) = 1.0;
-  if (clamped.empty()) return df;
-  const MatX A_CC = A(clamped, clamped);
-  const Eigen::PartialPivLU<MatX> lu(A_CC);
-  // A tiny pivot (relative to the block's entries) means the clamped contacts cannot hold w = 0
-  // on their own: two of them are the same constraint
-  if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() <= pivot_tolerance * A_CC.cwiseAbs().maxCoeff()) {
-    throw LcpFailure("solveLcpPivoting: singular pivot in the clamped contacts' block A_CC while driving contact " +
-                     std::to_string(d));
+// Solves A_CC x = g for the clamped contacts C as they join and leave. For symmetric A it keeps
+// a Cholesky factor A_CC = L L^T up to date, O(k^2) per change (k = |C|), where factoring A_CC
+// afresh at each pivot costs O(k^3): a contact joining adds a row to L, one leaving removes its
+// row and Givens rotations make L triangular again. L's rows follow the order of contacts().
+// Other A (a P-matrix) gets an LU factorization of A_CC at each solve.
+class ClampedSolver {
+ public:
+  ClampedSolver(const MatX& A, double pivot_tolerance, double scale)
+      : A_(A), pivot_tolerance_(pivot_tolerance), scale_(scale), position_(static_cast<std::size_t>(A.rows()), -1) {
+    const Index n = A.rows();
+    contacts_.reserve(static_cast<std::size_t>(n));
+    // Symmetric to round-off: a product such as J M^-1 J^T may differ from its transpose there
+    symmetric_ = n == 0 || (A - A.transpose()).cwiseAbs().maxCoeff() <= pivot_tolerance * scale;
+    if (symmetric_) {
+      L_.resize(n, n);
+      x_.resize(n);
+    }
   }
-  const VecX df_clamped = lu.solve(-A(clamped, d));
-  for (std::size_t k = 0; k < clamped.size(); ++k) df(clamped[k]) = df_clamped(static_cast<Index>(k));
-  return df;
-}
 
-void moveIndex(std::vector<Index>& from, std::vector<Index>& to, Index i) {
-  from.erase(std::find(from.begin(), from.end(), i));
-  to.push_back(i);
-}
+  const std::vector<Index>& contacts() const { return contacts_; }
+  bool contains(Index i) const { return position_[static_cast<std::size_t>(i)] >= 0; }
+
+  // Direction of Dantzig's step: df_d = 1 and df_C solves A_CC df_C = -A_Cd, so that every
+  // clamped contact keeps w = 0. Entries of df outside C and d are left as they are.
+  void direction(Index d, VecX& df) {
+    const Index k = size();
+    df(d) = 1.0;
+    if (k == 0) return;
+    if (symmetric_) {
+      x_.head(k) = -A_(contacts_, d);
+      const auto L = L_.topLeftCorner(k, k);
+      L.triangularView<Eigen::Lower>().solveInPlace(x_.head(k));
+      L.transpose().triangularView<Eigen::Upper>().solveInPlace(x_.head(k));
+      for (Index p = 0; p < k; ++p) df(contacts_[static_cast<std::size_t>(p)]) = x_(p);
+      return;
+    }
+    const MatX A_CC = A_(contacts_, contacts_);
+    const Eigen::PartialPivLU<MatX> lu(A_CC);
+    // A tiny pivot (relative to the block's entries) means the clamped contacts cannot hold w = 0
+    // on their own: two of them are the same constraint
+    if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() <= pivot_tolerance_ * A_CC.cwiseAbs().maxCoeff()) {
+      throw LcpFailure("solveLcpPivoting: singular pivot in the clamped contacts' block A_CC while driving contact " +
+                       std::to_string(d));
+    }
+    const VecX df_clamped = lu.solve(-A_(contacts_, d));
+    for (Index p = 0; p < k; ++p) df(contacts_[static_cast<std::size_t>(p)]) = df_clamped(p);
+  }
+
+  // C gains contact j: L's new row is (l^T, sqrt(s)) with L l = A_Cj and s = a_jj - l^T l, the
+  // Schur complement of A_CC. An s at round-off of A's entries means j repeats clamped contacts.
+  void add(Index j) {
+    const Index k = size();
+    if (symmetric_) {
+      x_.head(k) = A_(contacts_, j);
+      L_.topLeftCorner(k, k).triangularView<Eigen::Lower>().solveInPlace(x_.head(k));
+      const double s = A_(j, j) - x_.head(k).squaredNorm();
+      if (!(s > pivot_tolerance_ * scale_)) {
+        throw LcpFailure("solveLcpPivoting: singular pivot in the clamped contacts' block A_CC when contact " +
+                         std::to_string(j) + " joins it");
+      }
+      L_.row(k).head(k) = x_.head(k).transpose();
+      L_(k, k) = std::sqrt(s);
+    }
+    position_[static_cast<std::size_t>(j)] = k;
+    contacts_.push_back(j);
+  }
+
+  // C loses contact j: delete its row of L; each row below then has one entry right of the
+  // diagonal, which a rotation of two neighbouring columns zeroes (L Q Q^T L^T = L L^T).
+  void remove(Index j) {
+    const Index k = size(), p = position_[static_cast<std::size_t>(j)];
+    if (symmetric_) {
+      for (Index i = p; i + 1 < k; ++i) L_.row(i).head(k) = L_.row(i + 1).head(k);
+      for (Index r = p; r + 1 < k; ++r) {
+        const double a = L_(r, r), c = L_(r, r + 1), rho = std::hypot(a, c);
+        const double cosine = a / rho, sine = c / rho;
+        for (Index i = r; i + 1 < k; ++i) {
+          const double x = L_(i, r), y = L_(i, r + 1);
+          L_(i, r) = cosine * x + sine * y;
+          L_(i, r + 1) = cosine * y - sine * x;
+        }
+      }
+    }
+    contacts_.erase(contacts_.begin() + p);
+    for (Index q = p; q + 1 < k; ++q) position_[static_cast<std::size_t>(contacts_[static_cast<std::size_t>(q)])] = q;
+    position_[static_cast<std::size_t>(j)] = -1;
+  }
+
+ private:
+  Index size() const { return static_cast<Index>(contacts_.size()); }
+
+  const MatX& A_;
+  double pivot_tolerance_, scale_;
+  bool symmetric_ = false;
+  MatX L_;                       // symmetric A: top-left k x k, the Cholesky factor of A_CC
+  VecX x_;                       // work vector
+  std::vector<Index> contacts_;  // C, in L's order
+  std::vector<Index> position_;  // position in contacts_, -1 when not clamped
+};
 
 }  // namespace
 
@@ -92,13 +169,16 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // Sign tests on w and dw need A's scale: below pivot_tolerance * scale is round-off
   const MatX A_abs = A.cwiseAbs();
   const double scale = n > 0 ? A_abs.maxCoeff() : 0.0;
+  // Contacts couple only through shared bodies: A is mostly zeros, and dw = A df costs its nonzeros
+  const Eigen::SparseMatrix<double> A_sparse = A.sparseView(), A_abs_sparse = A_abs.sparseView();
   LcpSolution s;
   s.f = VecX::Zero(n);
   s.w = b;
-  std::vector<Index> clamped, free;  // C: w = 0, f >= 0; NC: f = 0, w >= 0
-  clamped.reserve(static_cast<std::size_t>(n));
+  ClampedSolver clamped(A, options.pivot_tolerance, scale);  // C: w = 0, f >= 0
+  std::vector<Index> free;                                   // NC: f = 0, w >= 0
   free.reserve(static_cast<std::size_t>(n));
   std::vector<bool> seen(static_cast<std::size_t>(n), false);
+  VecX df(n), dw(n), dw_noise(n);
   for (Index k = 0; k < n; ++k) {
     // Take the unseen contact with the most negative w (ties: the lowest index): the one the
     // others' forces are least likely to hold up, so later drives disturb fewer clamped forces
@@ -117,10 +197,13 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
                          std::to_string(d));
       }
       ++s.iterations;
-      const VecX df = pivotingDirection(A, clamped, d, options.pivot_tolerance);
-      const VecX dw = A * df;
+      // Direction: raise f_d by 1, move the clamped forces so that every clamped contact keeps w = 0
+      df.setZero();
+      clamped.direction(d, df);
+      dw.noalias() = A_sparse * df;
       // A dw_i within round-off of the terms it sums is no direction at all
-      const VecX dw_noise = options.pivot_tolerance * (A_abs * df.cwiseAbs());
+      dw_noise.noalias() = A_abs_sparse * df.cwiseAbs();
+      dw_noise *= options.pivot_tolerance;
       // Find the blocking contact by the ratio test (d first, so that ties end the drive)
       double step = kInfinity;
       Index blocking = -1;
@@ -128,7 +211,7 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
         step = -s.w(d) / dw(d);
         blocking = d;
       }
-      for (Index i : clamped) {
+      for (Index i : clamped.contacts()) {
         if (df(i) < -options.pivot_tolerance && std::max(s.f(i), 0.0) / -df(i) < step) {
           step = std::max(s.f(i), 0.0) / -df(i);
           blocking = i;
@@ -151,17 +234,19 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
       // Move the blocking contact to its other set, setting the blocked value to zero exactly
       if (blocking == d) {
         s.w(d) = 0.0;
-      } else if (std::find(clamped.begin(), clamped.end(), blocking) != clamped.end()) {
+      } else if (clamped.contains(blocking)) {
         s.f(blocking) = 0.0;
-        moveIndex(clamped, free, blocking);
+        clamped.remove(blocking);
+        free.push_back(blocking);
       } else {
         s.w(blocking) = 0.0;
-        moveIndex(free, clamped, blocking);
+        free.erase(std::find(free.begin(), free.end(), blocking));
+        clamped.add(blocking);
       }
     }
     // Add d to the clamped set when it pushes, else to the free set (f_d = 0, w_d >= 0)
     if (s.f(d) > 0.0) {
-      clamped.push_back(d);
+      clamped.add(d);
     } else {
       free.push_back(d);
     }
