@@ -261,11 +261,15 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
 
 namespace {
 
-// One run of Lemke's method on a checked LCP with some b_i < 0, where an entry of the entering
-// column is a pivot only above `fraction` times max(`floor`, the column's largest |entry|);
-// `pivots` counts each pivot made. LcpFailure on a ray, at the pivot limit, and on lost accuracy.
-LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, double fraction, double floor,
-                     int& pivots) {
+// How a run of Lemke's method picks the leaving row among rows that tie in the ratio test.
+enum class TieRule {
+  Lexicographic,  // the lexicographic minimum: never cycles in exact arithmetic
+  LargestPivot    // the largest entry of the entering column: the least round-off (Harris)
+};
+
+// One run of Lemke's method on a checked LCP with some b_i < 0, ties in the ratio test broken by
+// `ties`; `pivots` counts each pivot made. LcpFailure on a ray, at the pivot limit, and on lost accuracy.
+LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, TieRule ties, int& pivots) {
   const Index n = b.size();
   LcpSolution s;
   s.f = VecX::Zero(n);
@@ -304,24 +308,22 @@ LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, do
     if (s.iterations >= limit) {
       throw LcpFailure("solveLcpLemke: pivot limit " + std::to_string(limit) + " reached");
     }
-    // Find the leaving row by the minimum ratio test; ties broken lexicographically by the
-    // rows of B^-1 (the tableau's first n columns), which never cycles
-    std::vector<Index> candidates;
+    // Find the leaving row by the minimum ratio test. Entries within round-off of zero (n
+    // pivot_tolerance times max(1, the column's largest)) are no pivots, and a basic value
+    // within round-off below zero counts as the zero it is in exact arithmetic
+    const double eligible = options.pivot_tolerance * static_cast<double>(n) * std::max(1.0, T.col(entering).cwiseAbs().maxCoeff());
+    const auto ratio = [&](Index i) { return std::max(0.0, T(i, rhs)) / T(i, entering); };
     double best = kInfinity;
-    // Entries below the run's fraction of the column's largest are no pivots: redundant contacts
-    // make entries that are zero in exact arithmetic and round-off of the eliminations here, and
-    // dividing by one would wreck the tableau (lcp.hpp says why these sizes)
-    const double eligible = fraction * std::max(floor, T.col(entering).cwiseAbs().maxCoeff());
     for (Index i = 0; i < n; ++i) {
-      if (T(i, entering) > eligible) best = std::min(best, T(i, rhs) / T(i, entering));
+      if (T(i, entering) > eligible) best = std::min(best, ratio(i));
     }
     if (best == kInfinity) {
       throw LcpFailure("solveLcpLemke: ray termination after " + std::to_string(s.iterations) + " pivots (variable " +
                        std::to_string(entering) + " can grow without bound): the LCP has no solution Lemke can find");
     }
+    std::vector<Index> candidates;
     for (Index i = 0; i < n; ++i) {
-      if (T(i, entering) > eligible &&
-          T(i, rhs) / T(i, entering) <= best + options.pivot_tolerance * std::max(1.0, std::abs(best))) {
+      if (T(i, entering) > eligible && ratio(i) <= best + options.pivot_tolerance * std::max(1.0, best)) {
         candidates.push_back(i);
       }
     }
@@ -330,7 +332,16 @@ LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, do
     for (Index i : candidates) {
       if (basis[static_cast<std::size_t>(i)] == z0) row = i;
     }
-    for (Index k = 0; k < n && candidates.size() > 1 && basis[static_cast<std::size_t>(row)] != z0; ++k) {
+    if (basis[static_cast<std::size_t>(row)] != z0 && ties == TieRule::LargestPivot) {
+      // Redundant contacts make degenerate rows (basic value 0) whose entry is zero in exact
+      // arithmetic and round-off here: the largest entry among the ties is a true pivot
+      for (Index i : candidates) {
+        if (T(i, entering) > T(row, entering)) row = i;
+      }
+    }
+    // Ties broken lexicographically by the rows of B^-1 (the tableau's first n columns)
+    for (Index k = 0; k < n && ties == TieRule::Lexicographic && candidates.size() > 1 &&
+                      basis[static_cast<std::size_t>(row)] != z0; ++k) {
       double smallest = kInfinity;
       for (Index i : candidates) smallest = std::min(smallest, T(i, k) / T(i, entering));
       std::vector<Index> kept;
@@ -376,19 +387,18 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
     s.w = b;
     return s;
   }
-  // First run: only entries within n pivot_tolerance of max(1, the column's largest) are no
-  // pivots, so the answer is as accurate as the tableau's round-off allows. Redundant contacts
-  // (a pyramid's four corners per face) make entries that are zero in exact arithmetic and that
-  // size above it, and pivoting on one loses accuracy: then run again with every entry below
-  // sqrt(pivot_tolerance) of the column's largest left out, an answer to within the accuracy
-  // bound. Either way, iterations counts every pivot made
+  // First run: ties broken lexicographically, the rule that never cycles. Redundant contacts (a
+  // pyramid's four corners per face) make degenerate rows whose entry in the entering column is
+  // zero in exact arithmetic and round-off here; when a tie goes to such a row, dividing by it
+  // wrecks the tableau and the run loses accuracy. Then run again from the start with ties going
+  // to the largest entry. Either way, iterations counts every pivot made
   int pivots = 0;
   try {
-    LcpSolution s = lemkeRun(A, b, options, options.pivot_tolerance * static_cast<double>(n), 1.0, pivots);
+    LcpSolution s = lemkeRun(A, b, options, TieRule::Lexicographic, pivots);
     s.iterations = pivots;
     return s;
   } catch (const LostAccuracy&) {
-    LcpSolution s = lemkeRun(A, b, options, std::sqrt(options.pivot_tolerance), 0.0, pivots);
+    LcpSolution s = lemkeRun(A, b, options, TieRule::LargestPivot, pivots);
     s.iterations = pivots;
     return s;
   }
