@@ -33,8 +33,10 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // TODO(student): pivot_tolerance times its largest entry); df = 0 elsewhere; dw = A df.
   // TODO(student): factoring A_CC afresh at each pivot costs O(|C|^3): fine for the tests; for large
   // TODO(student): symmetric A keep a Cholesky factor L of A_CC up to date instead (handout, section 3).
-  // A dw_i within round-off of the terms it sums is no direction at all
-  // TODO(student): noise_i = pivot_tolerance * sum_j |a_ij| |df_j|; only |dw_i| > noise_i counts as a sign.
+  // A dw_i within round-off of the terms it sums is no direction at all, nor one within the
+  // round-off the direction carries: the clamped contacts' dw, zero in exact arithmetic
+  // TODO(student): noise_i = max(pivot_tolerance * sum_j |a_ij| |df_j|, max over clamped k of |dw_k|);
+  // TODO(student): only |dw_i| > noise_i counts as a sign.
   // Find the blocking contact by the ratio test (d first, so that ties end the drive)
   // TODO(student): d blocks at s = -w_d / dw_d when dw_d > noise_d; i in C at f_i / -df_i when df_i < -pivot_tolerance;
   // TODO(student): i in NC at w_i / -dw_i when dw_i < -noise_i; the smallest s wins, ties to d.

@@ -201,9 +201,13 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
       df.setZero();
       clamped.direction(d, df);
       dw.noalias() = A_sparse * df;
-      // A dw_i within round-off of the terms it sums is no direction at all
+      // A dw_i within round-off of the terms it sums is no direction at all, nor one within the
+      // round-off the direction carries: the clamped contacts' dw, zero in exact arithmetic
       dw_noise.noalias() = A_abs_sparse * df.cwiseAbs();
       dw_noise *= options.pivot_tolerance;
+      double carried = 0.0;
+      for (Index i : clamped.contacts()) carried = std::max(carried, std::abs(dw(i)));
+      dw_noise = dw_noise.cwiseMax(carried);
       // Find the blocking contact by the ratio test (d first, so that ties end the drive)
       double step = kInfinity;
       Index blocking = -1;
