@@ -17,6 +17,8 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // TODO(student): then take each contact once: n times, the one d not yet taken with the most negative w.
   // Sign tests on w and dw need A's scale: below pivot_tolerance * scale is round-off
   // TODO(student): scale = the largest |a_ij|.
+  // Contacts couple only through shared bodies: A is mostly zeros, and dw = A df costs its nonzeros
+  // TODO(student): optional for speed: A.sparseView() once, then dw = A_sparse * df (and the same for |A| |df|).
   // Take the unseen contact with the most negative w (ties: the lowest index): the one the
   // others' forces are least likely to hold up, so later drives disturb fewer clamped forces
   // TODO(student): d = argmin of w_i over the contacts not yet taken (strict <, scanning i = 0..n-1); mark it taken.
@@ -26,11 +28,15 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // forces on nearly dependent contacts leave w_d = -1e-11 where it is exactly 0
   // TODO(student): while w_d < -options.pivot_tolerance * (scale + n (sum_j |a_dj| |f_j| + |b_d|)) take a step, a pivot:
   // TODO(student): count it, and throw LcpFailure past max(options.max_iterations, 10 n).
-  // TODO(student): direction: df_d = 1, df_C solves A_CC df_C = -A_Cd (LcpFailure on an LU pivot of A_CC below
-  // TODO(student): pivot_tolerance times its largest entry);
-  // TODO(student): df = 0 elsewhere; dw = A df.
-  // A dw_i within round-off of the terms it sums is no direction at all
-  // TODO(student): noise_i = pivot_tolerance * sum_j |a_ij| |df_j|; only |dw_i| > noise_i counts as a sign.
+  // Direction: raise f_d by 1, move the clamped forces so that every clamped contact keeps w = 0
+  // TODO(student): df_d = 1, df_C solves A_CC df_C = -A_Cd (LcpFailure on an LU pivot of A_CC below
+  // TODO(student): pivot_tolerance times its largest entry); df = 0 elsewhere; dw = A df.
+  // TODO(student): factoring A_CC afresh at each pivot costs O(|C|^3): fine for the tests; for large
+  // TODO(student): symmetric A keep a Cholesky factor L of A_CC up to date instead (handout, section 3).
+  // A dw_i within round-off of the terms it sums is no direction at all, nor one within the
+  // round-off the direction carries: the clamped contacts' dw, zero in exact arithmetic
+  // TODO(student): noise_i = max(pivot_tolerance * sum_j |a_ij| |df_j|, max over clamped k of |dw_k|);
+  // TODO(student): only |dw_i| > noise_i counts as a sign.
   // Find the blocking contact by the ratio test (d first, so that ties end the drive)
   // TODO(student): d blocks at s = -w_d / dw_d when dw_d > noise_d; i in C at f_i / -df_i when df_i < -pivot_tolerance;
   // TODO(student): i in NC at w_i / -dw_i when dw_i < -noise_i; the smallest s wins, ties to d.
@@ -61,29 +67,32 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   // TODO(student): pivot on (argmin b, z0); the w that left says which variable enters next.
   // Let the complement of the leaving variable enter until z0 leaves
   // TODO(student): w_i <-> f_i; count pivots, LcpFailure past max(options.max_iterations, 10 n).
-  // Find the leaving row by the minimum ratio test; ties broken lexicographically by the
-  // rows of B^-1 (the tableau's first n columns), which never cycles
-  // Entries below the run's fraction of the column's largest are no pivots: redundant contacts
-  // make entries that are zero in exact arithmetic and round-off of the eliminations here, and
-  // dividing by one would wreck the tableau (lcp.hpp says why these sizes)
-  // TODO(student): eligible rows: entry > fraction * max(floor, largest |entry| of the column), the run's two numbers;
-  // TODO(student): none eligible: throw LcpFailure("... ray termination ...").
+  // Find the leaving row by the minimum ratio test. Entries within round-off of zero (n
+  // pivot_tolerance times max(1, the column's largest)) are no pivots, and a basic value
+  // within round-off below zero counts as the zero it is in exact arithmetic
+  // TODO(student): eligible rows: entry > n * pivot_tolerance * max(1, largest |entry| of the column); ratio
+  // TODO(student): max(0, right-hand side) / entry; none eligible: throw LcpFailure("... ray termination ...").
+  // TODO(student): ties: ratios within pivot_tolerance * max(1, smallest ratio) of the smallest.
   // z0 leaving among the ties ends the method at once
-  // TODO(student): otherwise compare the tied rows' entries in columns 0, 1, ... divided by the pivot entry, keeping the smallest.
+  // Redundant contacts make degenerate rows (basic value 0) whose entry is zero in exact
+  // arithmetic and round-off here: the largest entry among the ties is a true pivot
+  // TODO(student): second run: the tied row with the largest entry of the entering column.
+  // Ties broken lexicographically by the rows of B^-1 (the tableau's first n columns)
+  // TODO(student): first run: compare the tied rows' entries in columns 0, 1, ... divided by the pivot entry, keeping
+  // TODO(student): the smallest (within pivot_tolerance).
   // The basic values stay >= 0 in exact arithmetic; one far below 0 is round-off that has
   // already wrecked the tableau: stop now rather than pivot on to the limit
   // TODO(student): after each pivot, LcpFailure("... lost accuracy ...") when some right-hand side < -bound.
   // Read f from the basic variables (round-off may leave -1e-17: clamp to the contract's f >= 0)
   // TODO(student): f_i = right-hand side of the row where f_i is basic, 0 when nonbasic; w = A f + b; residual;
   // TODO(student): LcpFailure("... lost accuracy ...") as in pivoting.
-  // First run: only entries within n pivot_tolerance of max(1, the column's largest) are no
-  // pivots, so the answer is as accurate as the tableau's round-off allows. Redundant contacts
-  // (a pyramid's four corners per face) make entries that are zero in exact arithmetic and that
-  // size above it, and pivoting on one loses accuracy: then run again with every entry below
-  // sqrt(pivot_tolerance) of the column's largest left out, an answer to within the accuracy
-  // bound. Either way, iterations counts every pivot made
-  // TODO(student): write the steps above as one run taking (fraction, floor): first (n * pivot_tolerance, 1); when it
-  // TODO(student): lost accuracy (not on a ray or at the limit), again from the start with (sqrt(pivot_tolerance), 0);
+  // First run: ties broken lexicographically, the rule that never cycles. Redundant contacts (a
+  // pyramid's four corners per face) make degenerate rows whose entry in the entering column is
+  // zero in exact arithmetic and round-off here; when a tie goes to such a row, dividing by it
+  // wrecks the tableau and the run loses accuracy. Then run again from the start with ties going
+  // to the largest entry. Either way, iterations counts every pivot made
+  // TODO(student): write the steps above as one run taking the tie rule: first lexicographic; when it lost
+  // TODO(student): accuracy (not on a ray or at the limit), again from the start with ties to the largest entry;
   // TODO(student): iterations = the pivots of both runs.
   notImplemented("solveLcpLemke", "Lab 6 handout, section 4", A, b, options);
 }

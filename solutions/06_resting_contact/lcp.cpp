@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <Eigen/LU>
+#include <Eigen/SparseCore>
 
 #include "physlab/lcp.hpp"
 
@@ -58,29 +59,105 @@ VecX startingForces(const LcpOptions& options, Index n, bool cone = false) {
   return f;
 }
 
-// Direction of Dantzig's step: raise f_d by 1 and move the clamped forces so that every clamped
-// contact keeps w = 0, i.e. A_CC df_C = -A_Cd.
-VecX pivotingDirection(const MatX& A, const std::vector<Index>& clamped, Index d, double pivot_tolerance) {
-  VecX df = VecX::Zero(A.rows());
-  df(d) = 1.0;
-  if (clamped.empty()) return df;
-  const MatX A_CC = A(clamped, clamped);
-  const Eigen::PartialPivLU<MatX> lu(A_CC);
-  // A tiny pivot (relative to the block's entries) means the clamped contacts cannot hold w = 0
-  // on their own: two of them are the same constraint
-  if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() <= pivot_tolerance * A_CC.cwiseAbs().maxCoeff()) {
-    throw LcpFailure("solveLcpPivoting: singular pivot in the clamped contacts' block A_CC while driving contact " +
-                     std::to_string(d));
+// Solves A_CC x = g for the clamped contacts C as they join and leave. For symmetric A it keeps
+// a Cholesky factor A_CC = L L^T up to date, O(k^2) per change (k = |C|), where factoring A_CC
+// afresh at each pivot costs O(k^3): a contact joining adds a row to L, one leaving removes its
+// row and Givens rotations make L triangular again. L's rows follow the order of contacts().
+// Other A (a P-matrix) gets an LU factorization of A_CC at each solve.
+class ClampedSolver {
+ public:
+  ClampedSolver(const MatX& A, double pivot_tolerance, double scale)
+      : A_(A), pivot_tolerance_(pivot_tolerance), scale_(scale), position_(static_cast<std::size_t>(A.rows()), -1) {
+    const Index n = A.rows();
+    contacts_.reserve(static_cast<std::size_t>(n));
+    // Symmetric to round-off: a product such as J M^-1 J^T may differ from its transpose there
+    symmetric_ = n == 0 || (A - A.transpose()).cwiseAbs().maxCoeff() <= pivot_tolerance * scale;
+    if (symmetric_) {
+      L_.resize(n, n);
+      x_.resize(n);
+    }
   }
-  const VecX df_clamped = lu.solve(-A(clamped, d));
-  for (std::size_t k = 0; k < clamped.size(); ++k) df(clamped[k]) = df_clamped(static_cast<Index>(k));
-  return df;
-}
 
-void moveIndex(std::vector<Index>& from, std::vector<Index>& to, Index i) {
-  from.erase(std::find(from.begin(), from.end(), i));
-  to.push_back(i);
-}
+  const std::vector<Index>& contacts() const { return contacts_; }
+  bool contains(Index i) const { return position_[static_cast<std::size_t>(i)] >= 0; }
+
+  // Direction of Dantzig's step: df_d = 1 and df_C solves A_CC df_C = -A_Cd, so that every
+  // clamped contact keeps w = 0. Entries of df outside C and d are left as they are.
+  void direction(Index d, VecX& df) {
+    const Index k = size();
+    df(d) = 1.0;
+    if (k == 0) return;
+    if (symmetric_) {
+      x_.head(k) = -A_(contacts_, d);
+      const auto L = L_.topLeftCorner(k, k);
+      L.triangularView<Eigen::Lower>().solveInPlace(x_.head(k));
+      L.transpose().triangularView<Eigen::Upper>().solveInPlace(x_.head(k));
+      for (Index p = 0; p < k; ++p) df(contacts_[static_cast<std::size_t>(p)]) = x_(p);
+      return;
+    }
+    const MatX A_CC = A_(contacts_, contacts_);
+    const Eigen::PartialPivLU<MatX> lu(A_CC);
+    // A tiny pivot (relative to the block's entries) means the clamped contacts cannot hold w = 0
+    // on their own: two of them are the same constraint
+    if (lu.matrixLU().diagonal().cwiseAbs().minCoeff() <= pivot_tolerance_ * A_CC.cwiseAbs().maxCoeff()) {
+      throw LcpFailure("solveLcpPivoting: singular pivot in the clamped contacts' block A_CC while driving contact " +
+                       std::to_string(d));
+    }
+    const VecX df_clamped = lu.solve(-A_(contacts_, d));
+    for (Index p = 0; p < k; ++p) df(contacts_[static_cast<std::size_t>(p)]) = df_clamped(p);
+  }
+
+  // C gains contact j: L's new row is (l^T, sqrt(s)) with L l = A_Cj and s = a_jj - l^T l, the
+  // Schur complement of A_CC. An s at round-off of A's entries means j repeats clamped contacts.
+  void add(Index j) {
+    const Index k = size();
+    if (symmetric_) {
+      x_.head(k) = A_(contacts_, j);
+      L_.topLeftCorner(k, k).triangularView<Eigen::Lower>().solveInPlace(x_.head(k));
+      const double s = A_(j, j) - x_.head(k).squaredNorm();
+      if (!(s > pivot_tolerance_ * scale_)) {
+        throw LcpFailure("solveLcpPivoting: singular pivot in the clamped contacts' block A_CC when contact " +
+                         std::to_string(j) + " joins it");
+      }
+      L_.row(k).head(k) = x_.head(k).transpose();
+      L_(k, k) = std::sqrt(s);
+    }
+    position_[static_cast<std::size_t>(j)] = k;
+    contacts_.push_back(j);
+  }
+
+  // C loses contact j: delete its row of L; each row below then has one entry right of the
+  // diagonal, which a rotation of two neighbouring columns zeroes (L Q Q^T L^T = L L^T).
+  void remove(Index j) {
+    const Index k = size(), p = position_[static_cast<std::size_t>(j)];
+    if (symmetric_) {
+      for (Index i = p; i + 1 < k; ++i) L_.row(i).head(k) = L_.row(i + 1).head(k);
+      for (Index r = p; r + 1 < k; ++r) {
+        const double a = L_(r, r), c = L_(r, r + 1), rho = std::hypot(a, c);
+        const double cosine = a / rho, sine = c / rho;
+        for (Index i = r; i + 1 < k; ++i) {
+          const double x = L_(i, r), y = L_(i, r + 1);
+          L_(i, r) = cosine * x + sine * y;
+          L_(i, r + 1) = cosine * y - sine * x;
+        }
+      }
+    }
+    contacts_.erase(contacts_.begin() + p);
+    for (Index q = p; q + 1 < k; ++q) position_[static_cast<std::size_t>(contacts_[static_cast<std::size_t>(q)])] = q;
+    position_[static_cast<std::size_t>(j)] = -1;
+  }
+
+ private:
+  Index size() const { return static_cast<Index>(contacts_.size()); }
+
+  const MatX& A_;
+  double pivot_tolerance_, scale_;
+  bool symmetric_ = false;
+  MatX L_;                       // symmetric A: top-left k x k, the Cholesky factor of A_CC
+  VecX x_;                       // work vector
+  std::vector<Index> contacts_;  // C, in L's order
+  std::vector<Index> position_;  // position in contacts_, -1 when not clamped
+};
 
 }  // namespace
 
@@ -92,13 +169,16 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // Sign tests on w and dw need A's scale: below pivot_tolerance * scale is round-off
   const MatX A_abs = A.cwiseAbs();
   const double scale = n > 0 ? A_abs.maxCoeff() : 0.0;
+  // Contacts couple only through shared bodies: A is mostly zeros, and dw = A df costs its nonzeros
+  const Eigen::SparseMatrix<double> A_sparse = A.sparseView(), A_abs_sparse = A_abs.sparseView();
   LcpSolution s;
   s.f = VecX::Zero(n);
   s.w = b;
-  std::vector<Index> clamped, free;  // C: w = 0, f >= 0; NC: f = 0, w >= 0
-  clamped.reserve(static_cast<std::size_t>(n));
+  ClampedSolver clamped(A, options.pivot_tolerance, scale);  // C: w = 0, f >= 0
+  std::vector<Index> free;                                   // NC: f = 0, w >= 0
   free.reserve(static_cast<std::size_t>(n));
   std::vector<bool> seen(static_cast<std::size_t>(n), false);
+  VecX df(n), dw(n), dw_noise(n);
   for (Index k = 0; k < n; ++k) {
     // Take the unseen contact with the most negative w (ties: the lowest index): the one the
     // others' forces are least likely to hold up, so later drives disturb fewer clamped forces
@@ -117,10 +197,17 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
                          std::to_string(d));
       }
       ++s.iterations;
-      const VecX df = pivotingDirection(A, clamped, d, options.pivot_tolerance);
-      const VecX dw = A * df;
-      // A dw_i within round-off of the terms it sums is no direction at all
-      const VecX dw_noise = options.pivot_tolerance * (A_abs * df.cwiseAbs());
+      // Direction: raise f_d by 1, move the clamped forces so that every clamped contact keeps w = 0
+      df.setZero();
+      clamped.direction(d, df);
+      dw.noalias() = A_sparse * df;
+      // A dw_i within round-off of the terms it sums is no direction at all, nor one within the
+      // round-off the direction carries: the clamped contacts' dw, zero in exact arithmetic
+      dw_noise.noalias() = A_abs_sparse * df.cwiseAbs();
+      dw_noise *= options.pivot_tolerance;
+      double carried = 0.0;
+      for (Index i : clamped.contacts()) carried = std::max(carried, std::abs(dw(i)));
+      dw_noise = dw_noise.cwiseMax(carried);
       // Find the blocking contact by the ratio test (d first, so that ties end the drive)
       double step = kInfinity;
       Index blocking = -1;
@@ -128,7 +215,7 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
         step = -s.w(d) / dw(d);
         blocking = d;
       }
-      for (Index i : clamped) {
+      for (Index i : clamped.contacts()) {
         if (df(i) < -options.pivot_tolerance && std::max(s.f(i), 0.0) / -df(i) < step) {
           step = std::max(s.f(i), 0.0) / -df(i);
           blocking = i;
@@ -151,17 +238,19 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
       // Move the blocking contact to its other set, setting the blocked value to zero exactly
       if (blocking == d) {
         s.w(d) = 0.0;
-      } else if (std::find(clamped.begin(), clamped.end(), blocking) != clamped.end()) {
+      } else if (clamped.contains(blocking)) {
         s.f(blocking) = 0.0;
-        moveIndex(clamped, free, blocking);
+        clamped.remove(blocking);
+        free.push_back(blocking);
       } else {
         s.w(blocking) = 0.0;
-        moveIndex(free, clamped, blocking);
+        free.erase(std::find(free.begin(), free.end(), blocking));
+        clamped.add(blocking);
       }
     }
     // Add d to the clamped set when it pushes, else to the free set (f_d = 0, w_d >= 0)
     if (s.f(d) > 0.0) {
-      clamped.push_back(d);
+      clamped.add(d);
     } else {
       free.push_back(d);
     }
@@ -176,11 +265,15 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
 
 namespace {
 
-// One run of Lemke's method on a checked LCP with some b_i < 0, where an entry of the entering
-// column is a pivot only above `fraction` times max(`floor`, the column's largest |entry|);
-// `pivots` counts each pivot made. LcpFailure on a ray, at the pivot limit, and on lost accuracy.
-LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, double fraction, double floor,
-                     int& pivots) {
+// How a run of Lemke's method picks the leaving row among rows that tie in the ratio test.
+enum class TieRule {
+  Lexicographic,  // the lexicographic minimum: never cycles in exact arithmetic
+  LargestPivot    // the largest entry of the entering column: the least round-off (Harris)
+};
+
+// One run of Lemke's method on a checked LCP with some b_i < 0, ties in the ratio test broken by
+// `ties`; `pivots` counts each pivot made. LcpFailure on a ray, at the pivot limit, and on lost accuracy.
+LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, TieRule ties, int& pivots) {
   const Index n = b.size();
   LcpSolution s;
   s.f = VecX::Zero(n);
@@ -219,24 +312,22 @@ LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, do
     if (s.iterations >= limit) {
       throw LcpFailure("solveLcpLemke: pivot limit " + std::to_string(limit) + " reached");
     }
-    // Find the leaving row by the minimum ratio test; ties broken lexicographically by the
-    // rows of B^-1 (the tableau's first n columns), which never cycles
-    std::vector<Index> candidates;
+    // Find the leaving row by the minimum ratio test. Entries within round-off of zero (n
+    // pivot_tolerance times max(1, the column's largest)) are no pivots, and a basic value
+    // within round-off below zero counts as the zero it is in exact arithmetic
+    const double eligible = options.pivot_tolerance * static_cast<double>(n) * std::max(1.0, T.col(entering).cwiseAbs().maxCoeff());
+    const auto ratio = [&](Index i) { return std::max(0.0, T(i, rhs)) / T(i, entering); };
     double best = kInfinity;
-    // Entries below the run's fraction of the column's largest are no pivots: redundant contacts
-    // make entries that are zero in exact arithmetic and round-off of the eliminations here, and
-    // dividing by one would wreck the tableau (lcp.hpp says why these sizes)
-    const double eligible = fraction * std::max(floor, T.col(entering).cwiseAbs().maxCoeff());
     for (Index i = 0; i < n; ++i) {
-      if (T(i, entering) > eligible) best = std::min(best, T(i, rhs) / T(i, entering));
+      if (T(i, entering) > eligible) best = std::min(best, ratio(i));
     }
     if (best == kInfinity) {
       throw LcpFailure("solveLcpLemke: ray termination after " + std::to_string(s.iterations) + " pivots (variable " +
                        std::to_string(entering) + " can grow without bound): the LCP has no solution Lemke can find");
     }
+    std::vector<Index> candidates;
     for (Index i = 0; i < n; ++i) {
-      if (T(i, entering) > eligible &&
-          T(i, rhs) / T(i, entering) <= best + options.pivot_tolerance * std::max(1.0, std::abs(best))) {
+      if (T(i, entering) > eligible && ratio(i) <= best + options.pivot_tolerance * std::max(1.0, best)) {
         candidates.push_back(i);
       }
     }
@@ -245,7 +336,16 @@ LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, do
     for (Index i : candidates) {
       if (basis[static_cast<std::size_t>(i)] == z0) row = i;
     }
-    for (Index k = 0; k < n && candidates.size() > 1 && basis[static_cast<std::size_t>(row)] != z0; ++k) {
+    if (basis[static_cast<std::size_t>(row)] != z0 && ties == TieRule::LargestPivot) {
+      // Redundant contacts make degenerate rows (basic value 0) whose entry is zero in exact
+      // arithmetic and round-off here: the largest entry among the ties is a true pivot
+      for (Index i : candidates) {
+        if (T(i, entering) > T(row, entering)) row = i;
+      }
+    }
+    // Ties broken lexicographically by the rows of B^-1 (the tableau's first n columns)
+    for (Index k = 0; k < n && ties == TieRule::Lexicographic && candidates.size() > 1 &&
+                      basis[static_cast<std::size_t>(row)] != z0; ++k) {
       double smallest = kInfinity;
       for (Index i : candidates) smallest = std::min(smallest, T(i, k) / T(i, entering));
       std::vector<Index> kept;
@@ -291,19 +391,18 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
     s.w = b;
     return s;
   }
-  // First run: only entries within n pivot_tolerance of max(1, the column's largest) are no
-  // pivots, so the answer is as accurate as the tableau's round-off allows. Redundant contacts
-  // (a pyramid's four corners per face) make entries that are zero in exact arithmetic and that
-  // size above it, and pivoting on one loses accuracy: then run again with every entry below
-  // sqrt(pivot_tolerance) of the column's largest left out, an answer to within the accuracy
-  // bound. Either way, iterations counts every pivot made
+  // First run: ties broken lexicographically, the rule that never cycles. Redundant contacts (a
+  // pyramid's four corners per face) make degenerate rows whose entry in the entering column is
+  // zero in exact arithmetic and round-off here; when a tie goes to such a row, dividing by it
+  // wrecks the tableau and the run loses accuracy. Then run again from the start with ties going
+  // to the largest entry. Either way, iterations counts every pivot made
   int pivots = 0;
   try {
-    LcpSolution s = lemkeRun(A, b, options, options.pivot_tolerance * static_cast<double>(n), 1.0, pivots);
+    LcpSolution s = lemkeRun(A, b, options, TieRule::Lexicographic, pivots);
     s.iterations = pivots;
     return s;
   } catch (const LostAccuracy&) {
-    LcpSolution s = lemkeRun(A, b, options, std::sqrt(options.pivot_tolerance), 0.0, pivots);
+    LcpSolution s = lemkeRun(A, b, options, TieRule::LargestPivot, pivots);
     s.iterations = pivots;
     return s;
   }

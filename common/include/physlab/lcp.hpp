@@ -130,22 +130,21 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
 /// termination ...") when no variable can leave (the LCP has no solution Lemke can find; on
 /// positive semidefinite or P-matrices, it has none at all) and on reaching the pivot limit.
 /// InvalidInput as validateLcp().
-/// An entry of the entering column within round-off of zero is no pivot. A first run takes
-/// round-off as n pivot_tolerance times max(1, the column's largest magnitude): its answer is as
-/// accurate as the tableau allows. Redundant contacts (four corners of a face are three
-/// constraints; A is singular) make column entries that are zero in exact arithmetic and
-/// round-off above that in the tableau; dividing by an entry p multiplies that error by
-/// (largest / p), and the run loses accuracy. Lemke then runs again from the start, with only
-/// entries above \f$\sqrt{\text{pivot\_tolerance}}\f$ times the column's largest as pivots: the answer
-/// may keep \f$\sqrt{\text{pivot\_tolerance}}\f$ relative error (the accuracy check below), so p must be
-/// at least that fraction of the largest. (The first rule alone lost accuracy on the 55-cube
-/// pyramid's LCP after 408 pivots; the second alone returns f off by 1e-6 on a well-posed random
-/// problem of condition 6500. Both runs: 1680 pivots there.) iterations counts the pivots of both
-/// runs; each stops at the pivot limit. Like pivoting, never returns an answer that
-/// lost accuracy: LcpFailure ("... lost accuracy ...") when the answer's residual exceeds the
-/// bound given for pivoting, and as soon as a basic variable falls below minus that bound
-/// (exact arithmetic keeps them >= 0: the tableau is already wrecked, and pivoting on would only
-/// reach the limit).
+/// An entry of the entering column within round-off of zero, at most n pivot_tolerance times
+/// max(1, the column's largest magnitude), is no pivot, and a basic value within round-off below
+/// zero counts as 0 in the ratios (exact arithmetic keeps it \f$\ge 0\f$). Redundant contacts (four
+/// corners of a face are three constraints; A is singular) make degenerate rows (basic value 0)
+/// whose entry in the entering column is zero in exact arithmetic and round-off in the tableau,
+/// larger than that bound after many pivots; when such a row wins the lexicographic tie-break,
+/// dividing by its entry wrecks the tableau and the run loses accuracy. Lemke then runs again
+/// from the start, with ties (z0 still first) going to the row with the largest entry of the
+/// entering column (Harris' choice: the least round-off; no proof against cycling, which the
+/// pivot limit bounds). (The lexicographic run loses accuracy on the 55-cube pyramid's LCP after
+/// 370 pivots; the second run solves it in 203 more, and the 210-cube one's in 840 after 619.)
+/// iterations counts the pivots of both runs; each stops at the pivot limit. Like pivoting,
+/// never returns an answer that lost accuracy: LcpFailure ("... lost accuracy ...") when the
+/// answer's residual exceeds the bound given for pivoting, and as soon as a basic variable falls
+/// below minus that bound (the tableau is already wrecked, and pivoting on would only reach the limit).
 /// Handout: Lab 6, section 4.
 LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& options = {});
 
