@@ -14,8 +14,8 @@ namespace {
 
 // The part of an accumulated friction impulse inside the cone |j_t| <= j_max.
 Vec3 clampToCone(const Vec3& j_t, double j_max) {
-  const double length = j_t.norm();
-  return length > j_max ? Vec3(j_t * (j_max / length)) : j_t;
+  const double length2 = j_t.squaredNorm();
+  return length2 > j_max * j_max ? Vec3(j_t * (j_max / std::sqrt(length2))) : j_t;
 }
 
 constexpr double kUnlimited = std::numeric_limits<double>::infinity();
@@ -81,10 +81,10 @@ void applyAt(ContactBody& A, ContactBody& B, const Contact& c, const Vec3& J) {
 // impulse along -t that stops the sliding speed |u_t|, K_t = t . K t.
 Vec3 stopSliding(const Contact& c, const Vec3& u) {
   const Vec3 u_t = u - u.dot(c.n) * c.n;
-  const double speed = u_t.norm();
-  if (speed == 0.0) return Vec3::Zero();
-  const Vec3 t = u_t / speed;
-  return -(speed / t.dot(c.K_matrix * t)) * t;
+  const double speed2 = u_t.squaredNorm();
+  if (speed2 == 0.0) return Vec3::Zero();
+  // -(|u_t| / K_t) t with t = u_t / |u_t| and K_t = u_t . K u_t / |u_t|^2
+  return -(speed2 / u_t.dot(c.K_matrix * u_t)) * u_t;
 }
 
 }  // namespace
