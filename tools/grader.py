@@ -254,6 +254,12 @@ def select_stages(all_stages: list, wanted: list) -> list:
     return chosen
 
 
+def graded_stages(wanted: list, course) -> list:
+    """The labs a grade takes: those named (all when none), and of those the course's."""
+    stages = select_stages(discover_stages(ROOT), wanted)
+    return stages if course is None else [s for s in stages if s in course.labs]
+
+
 def escape_spec(name: str) -> str:
     """A test name as a Catch2 test spec that matches exactly that test."""
     return re.sub(r'([\\,\[\]*"~])', r"\\\1", name)
@@ -1627,9 +1633,7 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
     workers = len(sandbox.slots)
     results = []
     try:
-        stages = select_stages(discover_stages(ROOT), args.labs)
-        if course is not None:
-            stages = [s for s in stages if s in course.labs]
+        stages = graded_stages(args.labs, course)
         labs = find_labs(submission) if submission.is_dir() else None
         if labs is None:
             raise RuntimeError("no labs/ folder with NN_name stages in the submission")
@@ -1885,10 +1889,7 @@ def cmd_stages(args) -> int:
     falls back to every lab, so that the grade itself refuses it with its own message."""
     every = discover_stages(ROOT)
     try:
-        chosen = select_stages(every, args.labs)
-        if args.course:
-            labs = course_file.load(args.course).labs
-            chosen = [s for s in chosen if s in labs]
+        chosen = graded_stages(args.labs, course_file.load(args.course) if args.course else None)
     except (SystemExit, course_file.CourseError):
         chosen = every
     print("\n".join(chosen or every))
