@@ -49,43 +49,75 @@ void requireSolvable(const std::vector<ContactBody>& bodies, const std::vector<C
   }
 }
 
+// [r]x, the matrix of y -> r x y.
+Mat3 crossMatrix(const Vec3& r) {
+  Mat3 m;
+  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return m;
+}
+
 // The point's lever arms and its inverse effective mass matrix, fixed while the velocities change:
 // an impulse J at p changes the relative velocity of the touching points by K J, with
 // K = (m_A^-1 + m_B^-1) 1 - [r_A]x I_A^-1 [r_A]x - [r_B]x I_B^-1 [r_B]x ([r]x y = r x y).
 void prepare(const ContactBody& A, const ContactBody& B, Contact& c) {
   c.r_a = c.p - A.x;
   c.r_b = c.p - B.x;
-  const auto cross = [](const Vec3& r) {
-    Mat3 m;
-    m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
-    return m;
-  };
-  const Mat3 ra = cross(c.r_a), rb = cross(c.r_b);
+  const Mat3 ra = crossMatrix(c.r_a), rb = crossMatrix(c.r_b);
   c.K_matrix = (A.inv_mass + B.inv_mass) * Mat3::Identity() - ra * A.I_inv_world * ra - rb * B.I_inv_world * rb;
 }
 
-// relativeVelocity() with the prepared lever arms.
-Vec3 relativeVelocityAt(const ContactBody& A, const ContactBody& B, const Contact& c) {
-  return (A.v + A.omega.cross(c.r_a)) - (B.v + B.omega.cross(c.r_b));
-}
+// One point as the sweeps read it, built once per solve from the prepared contact and packed
+// together (as Bullet's solver rows and Box2D's contact points are): everything a sweep needs and
+// nothing it does not, so that it reads no Contact and no ContactBody but the velocities.
+struct SweepPoint {
+  int a = 0, b = 0;                           // the bodies
+  bool a_moves = false, b_moves = false;      // has mass or inertia: a fixed body takes no impulse
+  double v_target = 0.0;                      // -epsilon v_rel-, or 0 at and above -threshold [m/s]
+  double mu = 0.0;
+  double j = 0.0;                             // accumulated normal impulse [N s]
+  Vec3 j_t = Vec3::Zero();                    // accumulated friction impulse [N s]
+  Vec3 n = Vec3::UnitZ();
+  Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();
+  double K_nn = 0.0;                          // n . K n [1/kg]
+  double normal_mass = 0.0;                   // 1 / (n . K n) [kg]
+  Vec3 K_n = Vec3::Zero();                    // K n: u's change per unit normal impulse
+  Mat3 K = Mat3::Zero();                      // the contact's K_matrix
+  double inv_mass_a = 0.0, inv_mass_b = 0.0;  // [1/kg]
+  Mat3 turn_a = Mat3::Zero(), turn_b = Mat3::Zero();  // I^-1 [r]x: an impulse J turns A by turn_a J
+  Vec3 u_fixed = Vec3::Zero();                // the point velocity of B when B cannot move
 
-// applyImpulse() with the prepared lever arms (the input was checked before the first change).
-void applyAt(ContactBody& A, ContactBody& B, const Contact& c, const Vec3& J) {
-  A.v += A.inv_mass * J;
-  A.omega += A.I_inv_world * c.r_a.cross(J);
-  B.v -= B.inv_mass * J;
-  B.omega -= B.I_inv_world * c.r_b.cross(J);
-}
+  SweepPoint(const ContactBody& A, const ContactBody& B, const Contact& c, const Settings& settings)
+      : a(c.a), b(c.b), a_moves(moves(A)), b_moves(moves(B)),
+        v_target(c.v_rel_minus < -settings.restitution_threshold ? -c.epsilon * c.v_rel_minus : 0.0), mu(c.mu),
+        j(c.j), j_t(c.j_t), n(c.n), r_a(c.r_a), r_b(c.r_b), K_n(c.K_matrix * c.n), K(c.K_matrix),
+        inv_mass_a(A.inv_mass), inv_mass_b(B.inv_mass), turn_a(A.I_inv_world * crossMatrix(c.r_a)),
+        turn_b(B.I_inv_world * crossMatrix(c.r_b)) {
+    K_nn = n.dot(K_n);
+    normal_mass = 1.0 / K_nn;
+    if (!b_moves) u_fixed = B.v + B.omega.cross(r_b);
+  }
 
-// frictionImpulse() without a bound, for the relative velocity u, with the prepared K: the
-// impulse along -t that stops the sliding speed |u_t|, K_t = t . K t.
-Vec3 stopSliding(const Contact& c, const Vec3& u) {
-  const Vec3 u_t = u - u.dot(c.n) * c.n;
-  const double speed2 = u_t.squaredNorm();
-  if (speed2 == 0.0) return Vec3::Zero();
-  // -(|u_t| / K_t) t with t = u_t / |u_t| and K_t = u_t . K u_t / |u_t|^2
-  return -(speed2 / u_t.dot(c.K_matrix * u_t)) * u_t;
-}
+  static bool moves(const ContactBody& body) { return body.inv_mass > 0.0 || !body.I_inv_world.isZero(0.0); }
+
+  // u = p_A' - p_B', the relative velocity of the touching points
+  Vec3 relativeVelocity(const std::vector<ContactBody>& bodies) const {
+    const ContactBody &A = bodies[a], &B = bodies[b];
+    if (!b_moves) return (A.v + A.omega.cross(r_a)) - u_fixed;
+    return (A.v + A.omega.cross(r_a)) - (B.v + B.omega.cross(r_b));
+  }
+
+  // J at the point on A, -J on B: applyImpulse() with the prepared turns
+  void apply(std::vector<ContactBody>& bodies, const Vec3& J) const {
+    if (a_moves) {
+      bodies[a].v += inv_mass_a * J;
+      bodies[a].omega += turn_a * J;
+    }
+    if (b_moves) {
+      bodies[b].v -= inv_mass_b * J;
+      bodies[b].omega -= turn_b * J;
+    }
+  }
+};
 
 }  // namespace
 
@@ -93,43 +125,67 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
   // Refuse bad bodies and contacts before anything changes
   requireSolvable(bodies, contacts, "solveSequential");
   // Prepare once per solve what no sweep changes: each point's lever arms and K matrix
-  for (Contact& c : contacts) prepare(bodies[c.a], bodies[c.b], c);
+  std::vector<SweepPoint> points;
+  points.reserve(contacts.size());
+  for (Contact& c : contacts) {
+    prepare(bodies[c.a], bodies[c.b], c);
+    points.emplace_back(bodies[c.a], bodies[c.b], c, settings);
+  }
   // Warm start: apply the impulses carried over from the last step
-  for (const Contact& c : contacts) applyAt(bodies[c.a], bodies[c.b], c, c.j * c.n + c.j_t);
+  for (const SweepPoint& c : points) c.apply(bodies, c.j * c.n + c.j_t);
   int sweeps = 0;
   while (sweeps < settings.iterations) {
     ++sweeps;
-    double largest = 0.0;
-    for (Contact& c : contacts) {
-      ContactBody &A = bodies[c.a], &B = bodies[c.b];
+    // The largest velocity change of the sweep, and (squared) the largest sliding speed stopped
+    double largest = 0.0, stopped2 = 0.0;
+    for (SweepPoint& c : points) {
       // Aim at v_rel+ = -epsilon v_rel-, decided before the solve (resting points aim at 0), and
       // clamp the accumulated total, not the correction: j >= 0, so a sweep may take some back
-      const double v_target = c.v_rel_minus < -settings.restitution_threshold ? -c.epsilon * c.v_rel_minus : 0.0;
-      const Vec3 u = relativeVelocityAt(A, B, c);
-      const Vec3 Kn = c.K_matrix * c.n;
-      const double K = c.n.dot(Kn);
-      const double j = std::max(0.0, c.j + (v_target - c.n.dot(u)) / K);
+      const Vec3 u = c.relativeVelocity(bodies);
+      const double j = std::max(0.0, c.j + (c.v_target - c.n.dot(u)) * c.normal_mass);
       const double dj = j - c.j;
-      double change = K * std::abs(dj);
+      largest = std::max(largest, c.K_nn * std::abs(dj));
       c.j = j;
       Vec3 J = dj * c.n;
       // Stop the sliding left after this change (u + K n dj: the bodies move only once, below),
       // keeping the accumulated friction inside the cone |j_t| <= mu j of the normal impulse just
       // found (a cone of radius 0 takes everything back)
       if (c.mu > 0.0) {
-        const Vec3 j_t = c.j > 0.0 ? clampToCone(c.j_t + stopSliding(c, u + dj * Kn), c.mu * c.j) : Vec3::Zero();
+        Vec3 j_t = Vec3::Zero();
+        bool inside = false;
+        if (c.j > 0.0) {
+          // -(|u_t| / K_t) t with t = u_t / |u_t| and K_t = u_t . K u_t / |u_t|^2
+          const Vec3 w = u + dj * c.K_n;
+          const Vec3 u_t = w - w.dot(c.n) * c.n;
+          const double speed2 = u_t.squaredNorm();
+          j_t = speed2 > 0.0 ? Vec3(c.j_t - (speed2 / u_t.dot(c.K * u_t)) * u_t) : c.j_t;
+          const double j_max = c.mu * c.j, length2 = j_t.squaredNorm();
+          if (length2 > j_max * j_max) {
+            j_t *= j_max / std::sqrt(length2);
+          } else {
+            // Inside the cone the change stops the sliding: along itself it changes the velocity
+            // by the whole |u_t|, compared once per sweep (no square root per point)
+            inside = true;
+            stopped2 = std::max(stopped2, speed2);
+          }
+        }
         const Vec3 dj_t = j_t - c.j_t;
         J += dj_t;
         c.j_t = j_t;
-        const double size = dj_t.norm();
-        if (size > 0.0) change = std::max(change, dj_t.dot(c.K_matrix * dj_t) / size);
+        // Cut by the cone, it changes the velocity along itself by dj_t . K dj_t / |dj_t|
+        const double size = inside ? 0.0 : dj_t.norm();
+        if (size > 0.0) largest = std::max(largest, dj_t.dot(c.K * dj_t) / size);
       }
       // Apply the point's normal and friction changes together
-      applyAt(A, B, c, J);
-      largest = std::max(largest, change);
+      c.apply(bodies, J);
     }
     // Converged when no point's velocity changed by more than the tolerance in a whole sweep
-    if (largest <= settings.tolerance) break;
+    if (std::max(largest, std::sqrt(stopped2)) <= settings.tolerance) break;
+  }
+  // Report the accumulated impulses
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    contacts[k].j = points[k].j;
+    contacts[k].j_t = points[k].j_t;
   }
   return sweeps;
 }
