@@ -7,6 +7,9 @@ On every page of HTML_DIR (the Doxygen output, build/docs/html):
   - images: each <img src> and <object data> that names a local file must exist on disk;
   - tables: a paragraph holding a markdown table row or rule (a line of pipes, |---|) is a table
     that did not render (a stray pipe in a cell ends it, see docs/conventions.md);
+  - raw TeX: a TeX command (\hat, \mathbf, ...) in a paragraph's text outside a formula is a formula
+    that lost its \f$ markers, and a control character (a form feed, an escape) is a backslash
+    sequence that a script turned into one (\f, \e);
   - formulas: each page with formulas is loaded in headless Chromium (file://, no network) and,
     after MathJax ran, must show no MathJax error (merror, MathJax_Error, "Undefined control
     sequence", "Math Processing Error") and some rendered math.
@@ -33,6 +36,10 @@ TABLE_RULE = re.compile(r"\|\s*:?(-{3,}|[\u2013\u2014]-*):?\s*(\||$)")
 MATHJAX_BOX = re.compile(r'class="[^"]*\b(merror|MathJax_Error)\b')
 MATHJAX_MESSAGE = re.compile(r"Undefined control sequence[^<]*|Math Processing Error|Misplaced [^<]*"
                              r"|Missing (open|close) brace|Extra (open|close) brace")
+# Doxygen's formula spans in a paragraph's text, and what is left outside them
+FORMULA_SPAN = re.compile(r"\\\(.*?\\\)|\\\[.*?\\\]", re.DOTALL)
+TEX_COMMAND = re.compile(r"\\[A-Za-z]{2,}")
+CONTROL = re.compile(r"[\x00-\x08\x0b-\x0c\x0e-\x1f\x7f]")
 MATHJAX_RENDERED = re.compile(r'class="(MathJax|MathJax_Display|MathJax_CHTML|MathJax_SVG)[" ]')
 
 
@@ -89,6 +96,21 @@ def broken_tables(paragraphs):
     return found
 
 
+def raw_tex(paragraphs):
+    """Paragraph text outside formulas that holds a TeX command or a control character."""
+    found = []
+    for text in paragraphs:
+        outside = FORMULA_SPAN.sub(" ", text)
+        for pattern, what in ((TEX_COMMAND, "raw TeX (a formula without its \\f$ markers?)"),
+                              (CONTROL, "a control character (a backslash sequence turned into one?)")):
+            m = pattern.search(outside)
+            if m:
+                start = max(0, m.start() - 40)
+                snippet = outside[start:m.end() + 40].replace("\n", " ")
+                found.append(f"{what}: ...{snippet!r}...")
+    return found
+
+
 def rendered_dom(browser, page, profile, budget_ms):
     """The page's DOM after its scripts ran, from headless Chromium with the network off."""
     dom = headless.run(browser, page, Path(profile), ["--allow-file-access-from-files", "--dump-dom"],
@@ -137,6 +159,7 @@ def main():
                 findings.append(f"{page.name}: missing image {ref}")
         for row in broken_tables(parsed.paragraphs):
             findings.append(f"{page.name}: table not rendered: {row}")
+        findings.extend(f"{page.name}: {problem}" for problem in raw_tex(parsed.paragraphs))
         if FORMULA.search(text) and any(page.match(glob) for glob in args.formulas.split(",")):
             formula_pages.append(page)
 
