@@ -136,8 +136,7 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
   int sweeps = 0;
   while (sweeps < settings.iterations) {
     ++sweeps;
-    // The largest velocity change of the sweep, and (squared) the largest sliding speed stopped
-    double largest = 0.0, stopped2 = 0.0;
+    double largest = 0.0, stopped2 = 0.0;  // the largest velocity change; the largest |u_t|^2 stopped
     for (SweepPoint& c : points) {
       // Aim at v_rel+ = -epsilon v_rel-, decided before the solve (resting points aim at 0), and
       // clamp the accumulated total, not the correction: j >= 0, so a sweep may take some back
@@ -182,8 +181,7 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
     // Converged when no point's velocity changed by more than the tolerance in a whole sweep
     if (std::max(largest, std::sqrt(stopped2)) <= settings.tolerance) break;
   }
-  // Report the accumulated impulses
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
+  for (std::size_t k = 0; k < contacts.size(); ++k) {  // the accumulated impulses, reported
     contacts[k].j = points[k].j;
     contacts[k].j_t = points[k].j_t;
   }
