@@ -1,8 +1,11 @@
 // Framework tests for Lab 5's World API: states from velocities, per-pair depths, body indices,
 // the pipeline's classification before gravity, and the contact suite's selection and report. They grade nothing (the code lives in
 // common/), so they carry [common].
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <memory>
+#include <vector>
 
 #include "physlab/contact_suite.hpp"
 #include "physlab/error.hpp"
@@ -98,4 +101,105 @@ TEST_CASE("contact suite: scenes picked by name prefix, and a report refuses a m
   CHECK_THROWS_WITH(contactSuiteReport({}, "heading", "/tmp/unused", std::cout), Contains("no engine"));
   CHECK_THROWS_WITH(contactSuiteReport({SuiteColumn{"name", "label", "points", nullptr}}, "heading", "/tmp/unused", std::cout),
                     Contains("'label' has no make function"));
+}
+
+namespace {
+
+// An engine that never moves: every step leaves the start it was made from
+class Frozen : public SuiteEngine {
+ public:
+  explicit Frozen(Scene scene) : scene_(std::move(scene)) {}
+  void step(double) override {}
+  std::vector<BodyState> states() const override { return scene_.states; }
+
+ private:
+  Scene scene_;
+};
+
+}  // namespace
+
+TEST_CASE("contact suite: shaken runs shift only the moving bodies, by at most the shift, and report median and largest", "[common]") {
+  std::vector<Scene> starts;
+  const SuiteEngineMaker frozen = [&](const Scene& scene) {
+    starts.push_back(scene);
+    return std::make_unique<Frozen>(scene);
+  };
+  const double shift = 1e-9;
+  const std::vector<SpreadMeasure> spread = runSuiteSceneShaken("stack of 10 cubes", frozen, 9, shift);
+  REQUIRE(starts.size() == 9);
+  const Scene original = contactSuite({"stack"})[0]->scene();
+  std::vector<double> drifts;
+  for (std::size_t run = 0; run < starts.size(); ++run) {
+    double drift = 0.0;
+    for (std::size_t i = 0; i < original.states.size(); ++i) {
+      const Vec3 d = starts[run].states[i].x - original.states[i].x;
+      CAPTURE(run, i, d.transpose());
+      CHECK(d.z() == 0.0);                                      // only x and y move
+      CHECK(d.cwiseAbs().maxCoeff() <= shift);                   // each by at most the shift
+      if (original.bodies[i].fixed || run == 0) CHECK(d.isZero(0.0));  // the ground and run 0 stay
+      drift = std::max(drift, starts[run].states[i].x.head<2>().norm());
+    }
+    drifts.push_back(drift);
+  }
+  CHECK(starts[1].states[1].x != starts[2].states[1].x);  // every run its own shift
+  // A frozen stack's sway is its largest start offset: 0 in run 0, the shifts' in the others
+  std::sort(drifts.begin(), drifts.end());
+  REQUIRE(spread.size() == 2);
+  CHECK(spread[1].median.name == "largest sideways drift [m]");
+  CHECK(spread[1].median.value == drifts[4]);
+  CHECK(spread[1].largest == drifts[8]);
+  CHECK(drifts[4] > 0.0);
+  // The sink is the same in every run (nothing moves up or down): median = largest
+  CHECK(spread[0].median.value == spread[0].largest);
+  CHECK(spread[0].median.tolerance == contactSuite({"stack"})[0]->measures()[0].tolerance);
+  // Only the stack asks for several runs in reports
+  for (const auto& scene : contactSuite()) CHECK(scene->runs() == (scene->name() == "stack of 10 cubes" ? 9 : 1));
+  // One run without a shift is runSuiteScene itself
+  const auto once = runSuiteSceneShaken("stack of 10 cubes", frozen, 1, 0.0);
+  CHECK(once[1].median.value == 0.0);
+  CHECK(once[1].largest == 0.0);
+  // An even count takes the mean of the middle two
+  starts.clear();
+  const auto two = runSuiteSceneShaken("stack of 10 cubes", frozen, 2, shift);
+  const double second = [&] {
+    double d = 0.0;
+    for (const BodyState& s : starts[1].states) d = std::max(d, s.x.head<2>().norm());
+    return d;
+  }();
+  CHECK(two[1].median.value == 0.5 * second);
+  CHECK(two[1].largest == second);
+}
+
+TEST_CASE("contact suite: shaken runs refuse an unknown scene, no runs, a bad shift and a maker without engine", "[common]") {
+  const SuiteEngineMaker world = [](const Scene& scene) { return std::make_unique<WorldEngine>(World(scene, Settings{})); };
+  CHECK_THROWS_WITH(runSuiteSceneShaken("stack", world), Contains("no suite scene is called 'stack'"));
+  CHECK_THROWS_WITH(runSuiteSceneShaken("stack of 10 cubes", world, 0), Contains("at least 1 run, got 0"));
+  CHECK_THROWS_WITH(runSuiteSceneShaken("stack of 10 cubes", world, 9, -1e-9), Contains("shift must be finite and >= 0"));
+  CHECK_THROWS_WITH(runSuiteSceneShaken("stack of 10 cubes", world, 9, std::nan("")), Contains("shift must be finite"));
+  CHECK_THROWS_WITH(runSuiteSceneShaken("stack of 10 cubes", [](const Scene&) { return std::unique_ptr<SuiteEngine>(); }),
+                    Contains("returned no engine"));
+}
+
+TEST_CASE("contact suite: a run that stops being finite makes the shaken median and largest fail", "[common]") {
+  // An engine whose states are NaN after its first step
+  class Broken : public SuiteEngine {
+   public:
+    explicit Broken(Scene scene) : scene_(std::move(scene)) {}
+    void step(double) override {
+      for (BodyState& s : scene_.states) s.x = Vec3::Constant(std::nan(""));
+    }
+    std::vector<BodyState> states() const override { return scene_.states; }
+
+   private:
+    Scene scene_;
+  };
+  int made = 0;
+  const auto spread = runSuiteSceneShaken("stack of 10 cubes", [&](const Scene& scene) -> std::unique_ptr<SuiteEngine> {
+    // Runs 0-4 break, 5-8 stand still
+    if (made++ < 5) return std::make_unique<Broken>(scene);
+    return std::make_unique<Frozen>(scene);
+  });
+  CHECK(std::isnan(spread[1].largest));
+  CHECK(std::isnan(spread[1].median.value));  // five NaN of nine: the median is one of them
+  CHECK_FALSE(spread[1].median.pass());
 }

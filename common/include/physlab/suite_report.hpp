@@ -28,8 +28,9 @@ struct SuiteReport {
   int measures = 0;                ///< measures in the suite
 };
 
-/// Runs every scene of contactSuite() in every column's engine (an engine that throws fails that
-/// scene's measures and the reason is printed), prints the table to `out` under `heading`, and
+/// Runs every scene of contactSuite() in every column's engine (a scene with SuiteScene::runs()
+/// above 1 as the median of that many runs of runSuiteSceneShaken(); an engine that throws fails
+/// that scene's measures and the reason is printed), prints the table to `out` under `heading`, and
 /// writes `stem`.md (the table) and the chart `stem`.png and `stem`.svg. InvalidInput when there
 /// is no column or a column has no make function.
 SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const std::string& heading,

@@ -1,9 +1,12 @@
 // The textbook contact scenes of contact_suite.hpp: bodies, what each measures, and the truth.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
 
 #include "physlab/contact_suite.hpp"
+#include "physlab/error.hpp"
 #include "physlab/rigid.hpp"
 
 namespace physlab {
@@ -248,9 +251,11 @@ class Stack : public SuiteScene {
     return scene;
   }
   double duration() const override { return 3.0; }
+  // Round-off decides where a tall stack sways to (see runSuiteSceneShaken())
+  int runs() const override { return 9; }
   void observe(double, const std::vector<BodyState>& states) override {
     drift_ = 0.0;
-    for (int i = 1; i <= n_; ++i) drift_ = std::max(drift_, states[i].x.head<2>().norm());
+    for (int i = 1; i <= n_; ++i) keepLargest(drift_, states[i].x.head<2>().norm());
     sink_ = (2 * n_ - 1) * kCube - states[n_].x.z();
   }
   std::vector<Measure> measures() const override {
@@ -402,6 +407,52 @@ std::vector<Measure> runSuiteScene(SuiteScene& scene, SuiteEngine& engine) {
     scene.observe(k * kSuiteStep, engine.states());
   }
   return scene.measures();
+}
+
+std::vector<SpreadMeasure> runSuiteSceneShaken(const std::string& name, const SuiteEngineMaker& make, int runs,
+                                               double shift) {
+  if (runs < 1) throw InvalidInput("runSuiteSceneShaken needs at least 1 run, got " + std::to_string(runs));
+  if (!(shift >= 0.0 && std::isfinite(shift))) {
+    throw InvalidInput("runSuiteSceneShaken shift must be finite and >= 0, got " + std::to_string(shift));
+  }
+  // values[m][r]: measure m of run r; NaN sorts last, so a median or largest that reaches it fails
+  std::vector<Measure> first;
+  std::vector<std::vector<double>> values;
+  for (int run = 0; run < runs; ++run) {
+    std::unique_ptr<SuiteScene> scene;
+    for (std::unique_ptr<SuiteScene>& candidate : contactSuite()) {
+      if (candidate->name() == name) scene = std::move(candidate);
+    }
+    if (!scene) throw InvalidInput("runSuiteSceneShaken: no suite scene is called '" + name + "'");
+    Scene start = scene->scene();
+    std::mt19937_64 engine(static_cast<std::uint64_t>(run));
+    std::uniform_real_distribution<double> uniform(-shift, shift);
+    for (std::size_t i = 0; run > 0 && i < start.bodies.size(); ++i) {
+      if (start.bodies[i].fixed) continue;
+      start.states[i].x.x() += uniform(engine);
+      start.states[i].x.y() += uniform(engine);
+    }
+    std::unique_ptr<SuiteEngine> made = make(start);
+    if (!made) throw InvalidInput("runSuiteSceneShaken: the engine maker returned no engine");
+    const std::vector<Measure> measures = runSuiteScene(*scene, *made);
+    if (run == 0) {
+      first = measures;
+      values.resize(measures.size());
+    }
+    for (std::size_t m = 0; m < measures.size(); ++m) values[m].push_back(measures[m].value);
+  }
+  std::vector<SpreadMeasure> spread;
+  for (std::size_t m = 0; m < first.size(); ++m) {
+    std::vector<double>& v = values[m];
+    std::sort(v.begin(), v.end(), [](double x, double y) { return !std::isnan(x) && (std::isnan(y) || x < y); });
+    SpreadMeasure s;
+    s.median = first[m];
+    const std::size_t mid = v.size() / 2;
+    s.median.value = v.size() % 2 == 1 ? v[mid] : 0.5 * (v[mid - 1] + v[mid]);
+    s.largest = v.back();
+    spread.push_back(s);
+  }
+  return spread;
 }
 
 }  // namespace physlab

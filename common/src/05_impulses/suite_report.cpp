@@ -13,10 +13,17 @@ namespace physlab {
 
 namespace {
 
-// Runs `scene` in a fresh engine of `column`; an engine that throws leaves every measure not
-// finite (failed), and `note` says why.
+// Runs `scene` in a fresh engine of `column` (a chaotic scene: the median of its runs, each in a
+// fresh engine); an engine that throws leaves every measure not finite (failed), and `note` says why.
 std::vector<Measure> runColumn(SuiteScene& scene, const SuiteColumn& column, std::string& note) {
   try {
+    if (scene.runs() > 1) {
+      std::vector<Measure> medians;
+      for (const SpreadMeasure& m : runSuiteSceneShaken(scene.name(), column.make, scene.runs())) {
+        medians.push_back(m.median);
+      }
+      return medians;
+    }
     const std::unique_ptr<SuiteEngine> engine = column.make(scene.scene());
     return runSuiteScene(scene, *engine);
   } catch (const std::exception& e) {
@@ -65,7 +72,9 @@ SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const st
   for (std::size_t s = 0; s < suite.size(); ++s) {
     for (std::size_t k = 0; k < results[0][s].size(); ++k) {
       const Measure& truth = results[0][s][k];
-      std::vector<std::string> row = {suite[s]->name(), truth.name, fmt(truth.expected, 4), fmt(truth.tolerance, 3)};
+      const int runs = suite[s]->runs();
+      const std::string measure = truth.name + (runs > 1 ? ", median of " + std::to_string(runs) + " runs" : "");
+      std::vector<std::string> row = {suite[s]->name(), measure, fmt(truth.expected, 4), fmt(truth.tolerance, 3)};
       const double x = static_cast<double>(tics.size() + 1);
       for (std::size_t c = 0; c < columns.size(); ++c) {
         const Measure& m = results[c][s][k];
@@ -76,7 +85,7 @@ SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const st
         series[c].y.push_back(drawnScore(m));
       }
       table.add(row);
-      tics.emplace_back(x, suite[s]->name() + ": " + truth.name);
+      tics.emplace_back(x, suite[s]->name() + ": " + truth.name + (runs > 1 ? " (median)" : ""));
     }
   }
   std::vector<std::string> total = {"measures passed", "", "", ""};
