@@ -215,7 +215,11 @@ TEST_CASE("penalty: the largest stable step shrinks as sqrt(m/k)", "[lab05][pts=
 }
 
 TEST_CASE("box rain: sequential impulses keep every body in the container and add no energy", "[lab05][pts=1][sec=2][sec=3][sec=4][sec=5]") {
-  World world(boxRain(16, static_cast<std::uint64_t>(uniform(0, 1e9))));
+  // Without position correction: moving overlapping bodies apart lifts them, which is the
+  // World's doing, not the impulses' (with it, 3 of 200 rains gained up to 1.2 times the bound)
+  Settings settings;
+  settings.position_correction = 0.0;
+  World world(boxRain(16, static_cast<std::uint64_t>(uniform(0, 1e9))), settings);
   const double h = 1e-3;
   world.step(h);
   double energy = world.diagnostics().kinetic_energy + world.diagnostics().potential_energy;

@@ -72,15 +72,17 @@ TEST_CASE("plank on two supports: the lever rule Mg b / (a + b) and Mg a / (a + 
 }
 
 TEST_CASE("stack: 10 boxes stand for 10 s at 60 Hz with drift under 1 mm (velocity level)", "[lab06][pts=3][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
-  for (const LcpMethod method : {LcpMethod::Pivoting, LcpMethod::Lemke}) {
-    World world = restingWorld(cubeStack(10), Formulation::Velocity, method);
-    const std::vector<BodyState> start = world.states();
-    for (int step = 0; step < 600; ++step) world.step(kH);
-    // The issue's bar for a stack that stands.
-    CHECK(largestDrift(world, start) < 1e-3);
-    // Baumgarte keeps the overlap near the slop: a few slops at most.
-    CHECK(world.diagnostics().max_penetration < 0.01);
-  }
+  // Pivoting only: Lemke on the stack's friction pyramid (four redundant corners per face) ends
+  // on a ray or loses accuracy within the 600 steps in 99 of 100 runs whose cubes start shifted
+  // by 1e-15 m, so a correct Lemke whose round-off differs from the reference's would fail here
+  // by chance (handout section 4, "Where Lemke breaks").
+  World world = restingWorld(cubeStack(10), Formulation::Velocity, LcpMethod::Pivoting);
+  const std::vector<BodyState> start = world.states();
+  for (int step = 0; step < 600; ++step) world.step(kH);
+  // The issue's bar for a stack that stands (2e-7 m in every one of 100 shifted runs).
+  CHECK(largestDrift(world, start) < 1e-3);
+  // Baumgarte keeps the overlap near the slop: a few slops at most.
+  CHECK(world.diagnostics().max_penetration < 0.01);
 }
 
 TEST_CASE("pyramid: 5 rows (15 cubes) stand for 10 s at 60 Hz (velocity level)", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
@@ -93,9 +95,10 @@ TEST_CASE("pyramid: 5 rows (15 cubes) stand for 10 s at 60 Hz (velocity level)",
       // The issue's bar for a pyramid that stands, met by the exact solver.
       CHECK(largestDrift(world, start) < 1e-3);
     } else {
-      // PGS leaves each layer sinking into the overlap Baumgarte tolerates (slop 2 mm), so the
-      // top may sink up to 5 slops; a pyramid that collapses moves by its cube size, 0.2 m.
-      CHECK(largestDrift(world, start) < 5 * RestingSettings{}.slop);
+      // PGS leaves each layer sinking into the overlap Baumgarte tolerates and the pyramid
+      // sways with round-off (up to 4.6 mm in 200 runs shifted by 1 nm); 2 cm, a tenth of a cube,
+      // stands; a pyramid that collapses moves by its cube size, 0.2 m.
+      CHECK(largestDrift(world, start) < 0.02);
     }
   }
 }
@@ -123,21 +126,21 @@ TEST_CASE("friction ramp: blocks stick when tan(theta) < mu and slide at g (sin 
   }
 }
 
-TEST_CASE("mass ratio: pivoting and Lemke hold a 100x heavier box on a light one, 10 PGS sweeps do not", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
+TEST_CASE("mass ratio: pivoting holds a 100x heavier box on a light one, 10 PGS sweeps do not", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
+  // Not Lemke: on these two faces of four redundant corners it ends on a ray or loses accuracy
+  // within the 120 steps in 186 of 200 runs whose boxes start shifted by 1e-15 m (see the stack).
   auto drift = [](LcpMethod method, int sweeps) {
     World world = restingWorld(heavyOnLight(100.0), Formulation::Velocity, method, sweeps);
     const std::vector<BodyState> start = world.states();
     for (int step = 0; step < 120; ++step) world.step(kH);
     return largestDrift(world, start);
   };
-  const double pivoting = drift(LcpMethod::Pivoting, 10), lemke = drift(LcpMethod::Lemke, 10),
-               pgs = drift(LcpMethod::Pgs, 10);
-  CAPTURE(pivoting, lemke, pgs);
-  // The exact solvers leave only the Baumgarte-corrected slop.
+  const double pivoting = drift(LcpMethod::Pivoting, 10), pgs = drift(LcpMethod::Pgs, 10);
+  CAPTURE(pivoting, pgs);
+  // The exact solver leaves only the Baumgarte-corrected slop.
   CHECK(pivoting < 1e-3);
-  CHECK(lemke < 1e-3);
   // PGS's error shrinks by about (1 - 1/101) per sweep here: ten sweeps leave most of it.
-  CHECK(pgs > 10.0 * std::max(pivoting, lemke));
+  CHECK(pgs > 10.0 * pivoting);
 }
 
 TEST_CASE("lemke: the redundant contacts of a pyramid (many near-zero pivots) are solved, never answered wrongly", "[lab06][pts=1][sec=4]") {
@@ -232,7 +235,8 @@ TEST_CASE("pyramid: 10 rows (55 cubes) stand for 10 s, and your A, b and cone PG
   CAPTURE(late, checked->difference, checked->largest, largestDrift(world, start));
   // The same sweeps on the same rows; only the order of the sums differs (round-off).
   CHECK(checked->difference <= 1e-9 * checked->largest);
-  // Each of the 10 layers sinks into the overlap Baumgarte tolerates (slop 1 mm): a pyramid that
-  // stands moves less than that, one that collapses by a cube's size (0.2 m).
-  CHECK(largestDrift(world, start) < 10 * settings.slop);
+  // Each of the 10 layers sinks into the overlap Baumgarte tolerates (slop 1 mm) and the pyramid
+  // sways with round-off (up to 10.2 mm in 200 runs shifted by 1 nm): 2 cm, a tenth of a cube,
+  // stands; a pyramid that collapses moves by a cube's size (0.2 m).
+  CHECK(largestDrift(world, start) < 0.02);
 }
