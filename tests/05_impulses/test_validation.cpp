@@ -74,6 +74,9 @@ TEST_CASE("world validation: bad settings, a bad step and mismatched sizes are r
   settings = Settings{};
   settings.slop = -0.001;
   CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("slop"));
+  settings = Settings{};
+  settings.correction_sweeps = 0;
+  CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("correction sweeps must be at least 1, got 0"));
   World world(bouncingBall(1.0, 0.5));
   CHECK_THROWS_WITH(world.step(0.0), Contains("step size h"));
   CHECK_THROWS_AS(world.step(std::nan("")), InvalidInput);
@@ -89,7 +92,8 @@ TEST_CASE("world settings: printed with every value", "[common]") {
   std::ostringstream out;
   out << settings;
   CHECK_THAT(out.str(), Contains("method=simultaneous") && Contains("iterations=17") && Contains("warm_start=on") &&
-                            Contains("position_correction=0.2") && Contains("slop=0.001"));
+                            Contains("position_correction=0.2") && Contains("slop=0.001") &&
+                            Contains("correction_sweeps=8"));
   CHECK(out.str() == settings.toString());
 }
 
@@ -147,4 +151,69 @@ TEST_CASE("world position correction: an overlap beyond the slop shrinks by the 
   penalty.step(0.01);
   // Penalty springs push for themselves; a spring this soft barely moves the ball in one step.
   CHECK(penalty.states()[1].x.z() < 0.1 - 0.05 + 1e-9);
+}
+
+namespace {
+
+// Box half extents (0.2, 0.2, 0.1), 1 kg, at rest, no gravity: only the position correction moves it
+BodyDescription slab() { return BodyDescription::box(1.0, Vec3(0.2, 0.2, 0.1), 0.0, 0.5); }
+
+}  // namespace
+
+TEST_CASE("world position correction: a box sunk at one edge is turned level, and gains no velocity", "[common]") {
+  Scene scene = bouncingBall(0.0, 0.5);
+  scene.bodies[1] = slab();
+  // Tilted by 0.1 rad about y: its low edge 0.2 sin 0.1 = 2 cm below its high edge; 1 cm deep there
+  const double tilt = 0.1;
+  scene.states[1].q = Quat(Eigen::AngleAxisd(tilt, Vec3::UnitY()));
+  scene.states[1].x = Vec3(0.0, 0.0, 0.1 * std::cos(tilt) + 0.2 * std::sin(tilt) - 0.01);
+  Settings settings;
+  settings.gravity = Vec3::Zero();
+  World world(scene, settings);
+  for (int step = 0; step < 100; ++step) world.step(0.01);
+  const Eigen::AngleAxisd left(world.states()[1].q);
+  CAPTURE(left.angle(), world.depth(1, 0));
+  // Pushes at the sunk edge turn the box towards level as they lift it (0.068 rad left); a lift
+  // of the pair as a whole would keep the 0.1 rad
+  CHECK(left.angle() < 0.9 * tilt);
+  // 0.8^100 of the overlap beyond the slop is left
+  CHECK(world.depth(1, 0) <= settings.slop + 1e-9);
+  // Positions and orientations only: momentum and angular momentum stay exactly 0
+  CHECK(world.states()[1].P.isZero(0.0));
+  CHECK(world.states()[1].L.isZero(0.0));
+}
+
+TEST_CASE("world position correction: a box wedged between the ground and a box above comes out of both at once", "[common]") {
+  Scene scene = bouncingBall(0.0, 0.5);
+  scene.bodies[1] = slab();
+  scene.states[1].x = Vec3(0.0, 0.0, 0.1 - 0.03);  // 3 cm into the ground
+  scene.bodies.push_back(slab());
+  BodyState above;
+  above.x = Vec3(0.0, 0.0, 0.3 - 0.06);  // 3 cm into the box below
+  scene.states.push_back(above);
+  // Each pair moved apart on its own (the World's correction before 2026-11-26), all of the
+  // overlap in one step: the lower box goes up by its ground pair's push and down by half the
+  // upper pair's, so the upper overlap stays 3 cm and the ground's 1.5 cm. Gauss-Seidel sees the
+  // lower box leave the ground while it pushes the upper one away.
+  for (const int sweeps : {8, 32}) {
+    Settings settings;
+    settings.gravity = Vec3::Zero();
+    settings.position_correction = 1.0;  // all of the overlap beyond the slop, in one step
+    settings.correction_sweeps = sweeps;
+    World world(scene, settings);
+    world.step(0.01);
+    world.step(0.01);  // the second step's contacts show what the first step's correction left
+    CAPTURE(sweeps, world.depth(1, 0), world.depth(2, 1));
+    if (sweeps == 8) {
+      // The default's 8 sweeps (4 corners a face): 6.5 and 6.8 mm left of 3 cm
+      CHECK(world.depth(1, 0) < 0.01);
+      CHECK(world.depth(2, 1) < 0.01);
+    } else {
+      // Converged: both at the slop
+      CHECK(world.depth(1, 0) == Approx(settings.slop).margin(1e-4));
+      CHECK(world.depth(2, 1) == Approx(settings.slop).margin(1e-4));
+    }
+    CHECK(world.states()[1].P.isZero(0.0));
+    CHECK(world.states()[2].P.isZero(0.0));
+  }
 }

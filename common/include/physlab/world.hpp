@@ -34,8 +34,10 @@
 /// gravity does not (its approach is 0, not \f$g h\f$), and a bounce never returns the speed gravity
 /// added during the step of the impact (the energy it would gain). Impulses
 /// fix velocities only, so overlap left by a step would stay for ever; the position correction
-/// moves each overlapping pair apart along its normal by Settings::position_correction times the
-/// depth beyond Settings::slop, split by inverse mass (as Box2D and Bullet do in some form).
+/// moves and turns the bodies until each point's overlap beyond Settings::slop has shrunk by
+/// Settings::position_correction, with Settings::correction_sweeps Gauss-Seidel sweeps over the
+/// points (Box2D's position solver, linearised; see the Lab 5 handout, section 8). It changes
+/// positions and orientations only: no velocity, so no kinetic energy.
 /// Given a RestingContactSolver (Lab 6), the respond phase hands it the points that are not
 /// colliding (every point, when the solver bounces() itself); without one (Lab 5) the impulse
 /// solver handles them too, with \f$\epsilon = 0\f$.
@@ -115,8 +117,9 @@ struct Settings {
   double penalty_k = 1e4;             ///< penalty spring stiffness k [N/m]
   double penalty_d = 0.0;             ///< penalty damping d [N s/m]
   bool use_broad_phase = true;        ///< Lab 4's incremental AABB tree before the narrow phase (else every pair)
-  double position_correction = 0.2;   ///< impulse methods: fraction of each pair's overlap beyond the slop removed per step by moving the bodies apart, in [0, 1] (0: off)
+  double position_correction = 0.2;   ///< impulse methods: fraction of each point's overlap beyond the slop removed per step by moving and turning the bodies, in [0, 1] (0: off)
   double slop = 0.001;                ///< overlap the position correction leaves alone [m]
+  int correction_sweeps = 8;          ///< Gauss-Seidel sweeps of the position correction over the points, alternately forward and backward, >= 1
 
   /// One line naming every setting and its value.
   std::string toString() const;
@@ -377,7 +380,7 @@ class World {
   void respond(double h);
   void solveRestingContacts(double h);
   void integrate(double h);
-  void correctPositions();
+  void correctPositions(double h);
   void computeDiagnostics();
   void loadContactBodies();
   void storeContactBodies();
@@ -416,6 +419,17 @@ class World {
   std::vector<Mat3> inv_inertia_body_;     // I_body^-1 once, 0 when fixed
   PairList found_;                         // the broad phase's pairs, refilled in place
   std::vector<int> resting_;
+  // The position correction's points and the bodies' moves and turns, refilled in place
+  struct CorrectionPoint {
+    int a, b;
+    Vec3 n, r_a, r_b;
+    Vec3 turn_a, turn_b;  // I^-1 (r x n): the turn of each body per unit push along n
+    double separation;    // n . (p_A - p_B) after the step's motion, before any correction [m]
+    double target;        // the separation this step's correction reaches for [m]
+    double inv_k;         // 1 / (n . K n), the push that opens the separation by 1 m [kg]
+  };
+  std::vector<CorrectionPoint> correction_;
+  std::vector<Vec3> shift_, turn_;
   Diagnostics diagnostics_;
   PhaseTimes times_;
   double time_ = 0.0;

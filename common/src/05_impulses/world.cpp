@@ -60,6 +60,9 @@ void validateSettings(const Settings& s) {
     throw InvalidInput("settings position correction must be in [0, 1], got " + std::to_string(s.position_correction));
   }
   requireNonNegative(s.slop, "settings slop");
+  if (s.correction_sweeps < 1) {
+    throw InvalidInput("settings correction sweeps must be at least 1, got " + std::to_string(s.correction_sweeps));
+  }
   requirePositive(s.penalty_k, "settings penalty stiffness k");
   requireNonNegative(s.penalty_d, "settings penalty damping d");
 }
@@ -120,7 +123,8 @@ std::string Settings::toString() const {
       << " gravity=(" << gravity.x() << ", " << gravity.y() << ", " << gravity.z() << ")"
       << " penalty_k=" << penalty_k << " penalty_d=" << penalty_d
       << " broad_phase=" << (use_broad_phase ? "incremental tree" : "all pairs")
-      << " position_correction=" << position_correction << " slop=" << slop;
+      << " position_correction=" << position_correction << " slop=" << slop
+      << " correction_sweeps=" << correction_sweeps;
   return out.str();
 }
 
@@ -226,7 +230,7 @@ void World::step(double h) {
   // Positions and orientations with the new velocities
   integrate(h);
   // Overlap the velocities cannot remove: move overlapping pairs apart
-  correctPositions();
+  correctPositions(h);
   // Energies, momenta, penetration
   computeDiagnostics();
   time_ += h;
@@ -467,29 +471,75 @@ void World::integrate(double h) {
   }
 }
 
-void World::correctPositions() {
+void World::correctPositions(double h) {
   // Penalty springs push overlapping bodies apart themselves
   if (settings_.position_correction == 0.0 || settings_.method == ResponseMethod::Penalty) return;
   if (contacts_.empty()) return;
   PhaseTimer timer(times_.correct);
-  // One correction per pair, from its deepest point: the points of a manifold come together
-  std::size_t first = 0;
-  while (first < contacts_.size()) {
-    const int a = contacts_[first].a, b = contacts_[first].b;
-    double depth = 0.0;
-    std::size_t last = first;
-    for (; last < contacts_.size() && contacts_[last].a == a && contacts_[last].b == b; ++last) {
-      depth = std::max(depth, contacts_[last].depth);
+  // Each point's separation after this step's motion, to first order: -depth + h n . (u_A - u_B),
+  // u the velocity of each body's point at p. It is to reach -slop - (1 - beta)(overlap - slop):
+  // beta of the overlap beyond the slop goes this step. A pair the velocities already part
+  // needs no push. Masses, inertias and velocities are the solver's copies (its answer).
+  const double beta = settings_.position_correction, slop = settings_.slop;
+  correction_.clear();
+  for (const Contact& c : contacts_) {
+    CorrectionPoint point;
+    point.a = c.a;
+    point.b = c.b;
+    point.n = c.n;
+    point.r_a = c.p - states_[c.a].x;
+    point.r_b = c.p - states_[c.b].x;
+    point.turn_a = point.turn_b = Vec3::Zero();
+    double k = 0.0;
+    Vec3 u = Vec3::Zero();
+    if (!bodies_[c.a].fixed) {
+      const ContactBody& A = contact_bodies_[c.a];
+      point.turn_a = A.I_inv_world * point.r_a.cross(c.n);
+      k += A.inv_mass + point.r_a.cross(c.n).dot(point.turn_a);
+      u += A.v + A.omega.cross(point.r_a);
     }
-    const double inv_a = bodies_[a].fixed ? 0.0 : 1.0 / bodies_[a].mass;
-    const double inv_b = bodies_[b].fixed ? 0.0 : 1.0 / bodies_[b].mass;
-    const double push = settings_.position_correction * std::max(0.0, depth - settings_.slop);
-    if (push > 0.0 && inv_a + inv_b > 0.0) {
-      const Vec3& n = contacts_[first].n;
-      states_[a].x += (push * inv_a / (inv_a + inv_b)) * n;
-      states_[b].x -= (push * inv_b / (inv_a + inv_b)) * n;
+    if (!bodies_[c.b].fixed) {
+      const ContactBody& B = contact_bodies_[c.b];
+      point.turn_b = B.I_inv_world * point.r_b.cross(c.n);
+      k += B.inv_mass + point.r_b.cross(c.n).dot(point.turn_b);
+      u -= B.v + B.omega.cross(point.r_b);
     }
-    first = last;
+    if (k == 0.0) continue;
+    point.inv_k = 1.0 / k;
+    point.separation = -c.depth + h * c.n.dot(u);
+    point.target = -slop - (1.0 - beta) * std::max(0.0, -point.separation - slop);
+    if (point.separation < point.target) correction_.push_back(point);
+  }
+  if (correction_.empty()) return;
+  // Gauss-Seidel over the points, forward then backward (one way only tilts a light box under a
+  // heavy one a little further each step): each push along n, never a pull, moves and turns both
+  // bodies, and the next points see the separation those moves left
+  shift_.assign(bodies_.size(), Vec3::Zero());
+  turn_.assign(bodies_.size(), Vec3::Zero());
+  const std::size_t count = correction_.size();
+  for (int sweep = 0; sweep < settings_.correction_sweeps; ++sweep) {
+    for (std::size_t k = 0; k < count; ++k) {
+      const CorrectionPoint& point = correction_[sweep % 2 == 0 ? k : count - 1 - k];
+      const double separation =
+          point.separation + point.n.dot(shift_[point.a] + turn_[point.a].cross(point.r_a) - shift_[point.b] -
+                                         turn_[point.b].cross(point.r_b));
+      if (separation >= point.target) continue;
+      const double push = (point.target - separation) * point.inv_k;
+      if (!bodies_[point.a].fixed) {
+        shift_[point.a] += (push * contact_bodies_[point.a].inv_mass) * point.n;
+        turn_[point.a] += push * point.turn_a;
+      }
+      if (!bodies_[point.b].fixed) {
+        shift_[point.b] -= (push * contact_bodies_[point.b].inv_mass) * point.n;
+        turn_[point.b] -= push * point.turn_b;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_[i].fixed) continue;
+    states_[i].x += shift_[i];
+    // A turn is a rotation vector: the orientation turned by it over unit time
+    if (!turn_[i].isZero()) states_[i].q = exponentialUpdate(states_[i].q, turn_[i], 1.0).normalized();
   }
 }
 
