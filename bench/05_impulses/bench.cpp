@@ -30,8 +30,9 @@
 // the most negative getDistance() of its manifolds after each step: both are measured at the same
 // point of the step (after collision detection, before the positions move). The deepest contact
 // of the last step shows what each engine's position correction (Bullet's split impulse and
-// Baumgarte term; ours moves overlapping pairs apart) left behind. Writes <out>/lab05_bench.md and the chart
-// <out>/lab05_bench.
+// Baumgarte term; ours moves and turns the bodies, Gauss-Seidel over the points) left behind,
+// in the measured run and as the median of kShakenRuns runs shifted by 1 nm. Writes
+// <out>/lab05_bench.md and the chart <out>/lab05_bench.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -60,12 +61,27 @@ namespace {
 constexpr double kStep = 1.0 / 60.0;
 constexpr std::uint64_t kSeed = 5;
 constexpr int kFirstMovingBody = 5;  // boxRain: the ground plane and four walls come first
+// A pile is chaotic: shifting the bodies' start by a nanometre moves the deepest contact of the
+// last step of the rain of 100 from 1.0 to 8.4 mm in our World (0.2 to 0.9 mm in Bullet), so
+// that figure is also given as the median of this many runs, the first unshifted (shakenScene())
+constexpr int kShakenRuns = 9;
+
+// The median of the last step's deepest contact over kShakenRuns runs of `last` on the scene
+// shifted by 1 nm (run 0 unshifted; `first` is its figure, already measured).
+template <typename LastPenetration>
+double shakenMedian(const Scene& scene, double first, const LastPenetration& last) {
+  std::vector<double> values = {first};
+  for (int run = 1; run < kShakenRuns; ++run) values.push_back(last(shakenScene(scene, static_cast<std::uint64_t>(run))));
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
 
 // What one engine did on one scene: the fastest window and what the untimed run measured.
 struct RunResult {
   double seconds_per_step = INFINITY;  // fastest window
   double max_penetration = 0.0;        // deepest contact over the run [m]
   double last_penetration = 0.0;       // deepest contact of the last step: what correction left [m]
+  double last_penetration_median = 0.0;  // its median over kShakenRuns runs shifted by 1 nm [m]
   double contacts_per_step = 0.0;      // mean contact points per step
   double sweeps_per_step = NAN;        // mean solver sweeps per step (ours)
   int outside_walls = 0;               // moving bodies whose centre ended beyond a wall's inner face
@@ -116,6 +132,7 @@ PhaseTimes scaled(const PhaseTimes& t, double factor) {
   s.classify = t.classify * factor;
   s.respond = t.respond * factor;
   s.integrate = t.integrate * factor;
+  s.correct = t.correct * factor;
   s.diagnostics = t.diagnostics * factor;
   return s;
 }
@@ -336,8 +353,21 @@ int main(int argc, char** argv) {
       std::vector<RunResult> r(engines.size());
       measureOurs(scene, sequential, steps, r[0]);
       measureOurs(scene, simultaneous, steps, r[1]);
+      for (int e = 0; e < 2; ++e) {
+        const Settings& settings = e == 0 ? sequential : simultaneous;
+        r[e].last_penetration_median = shakenMedian(scene, r[e].last_penetration, [&](const Scene& shaken) {
+          RunResult once;
+          measureOurs(shaken, settings, steps, once);
+          return once.last_penetration;
+        });
+      }
 #ifdef PHYSLAB_HAVE_BULLET
       measureBullet(scene, sequential, steps, r[2]);
+      r[2].last_penetration_median = shakenMedian(scene, r[2].last_penetration, [&](const Scene& shaken) {
+        RunResult once;
+        measureBullet(shaken, sequential, steps, once);
+        return once.last_penetration;
+      });
 #endif
       for (int w = 0; w < windows; ++w) {
         timeOurs(scene, sequential, steps, r[0]);
@@ -352,32 +382,35 @@ int main(int argc, char** argv) {
 
     // The main table: speed and penetration per engine and size, with the time ratio to Bullet.
     Table table({"N", "engine", "ms per step", "steps per second", "time / Bullet's", "max penetration [mm]",
-                 "in the last step [mm]", "contact points per step", "solver sweeps per step", "outside walls / below ground at end"});
+                 "in the last step [mm]", "last step, median of " + std::to_string(kShakenRuns) + " [mm]", "contact points per step", "solver sweeps per step", "outside walls / below ground at end"});
     for (std::size_t s = 0; s < sizes.size(); ++s) {
       for (const Engine& e : engines) {
         const RunResult& r = e.at[s];
         const double bullet_seconds = engines.size() > 2 ? engines[2].at[s].seconds_per_step : NAN;
         table.add({std::to_string(sizes[s]), e.name, fmt(1e3 * r.seconds_per_step), fmt(1.0 / r.seconds_per_step),
                    std::isfinite(bullet_seconds) ? fmt(r.seconds_per_step / bullet_seconds) : "-",
-                   fmt(1e3 * r.max_penetration), fmt(1e3 * r.last_penetration), fmt(r.contacts_per_step),
+                   fmt(1e3 * r.max_penetration), fmt(1e3 * r.last_penetration), fmt(1e3 * r.last_penetration_median),
+                   fmt(r.contacts_per_step),
                    std::isfinite(r.sweeps_per_step) ? fmt(r.sweeps_per_step) : "up to " + std::to_string(sequential.iterations),
                    r.finite ? std::to_string(r.outside_walls) + " / " + std::to_string(r.below_ground) : "NOT FINITE"});
       }
     }
 #ifndef PHYSLAB_HAVE_BULLET
-    table.add({"-", "Bullet", "not installed", "-", "-", "-", "-", "-", "-", "-"});
+    table.add({"-", "Bullet", "not installed", "-", "-", "-", "-", "-", "-", "-", "-"});
 #endif
 
     // Where our step's time goes: ms per step in each phase of World::step, fastest window.
     Table phases({"N", "method", "forces", "broad phase", "narrow phase", "classify", "respond", "integrate",
-                  "diagnostics", "sum of phases [ms]", "respond share"});
+                  "correct", "diagnostics", "sum of phases [ms]", "respond share"});
     for (std::size_t s = 0; s < sizes.size(); ++s) {
       for (std::size_t e = 0; e < 2; ++e) {
         const PhaseTimes& p = engines[e].at[s].phases;
-        const double sum = p.forces + p.broad_phase + p.narrow_phase + p.classify + p.respond + p.integrate + p.diagnostics;
+        const double sum =
+            p.forces + p.broad_phase + p.narrow_phase + p.classify + p.respond + p.integrate + p.correct + p.diagnostics;
         phases.add({std::to_string(sizes[s]), responseMethodName(e == 0 ? ResponseMethod::Sequential : ResponseMethod::Simultaneous),
                     fmt(1e3 * p.forces), fmt(1e3 * p.broad_phase), fmt(1e3 * p.narrow_phase), fmt(1e3 * p.classify),
-                    fmt(1e3 * p.respond), fmt(1e3 * p.integrate), fmt(1e3 * p.diagnostics), fmt(1e3 * sum),
+                    fmt(1e3 * p.respond), fmt(1e3 * p.integrate), fmt(1e3 * p.correct), fmt(1e3 * p.diagnostics),
+                    fmt(1e3 * sum),
                     percent(p.respond, sum)});
       }
     }
@@ -468,12 +501,15 @@ int main(int argc, char** argv) {
       const RunResult& peer = engines[2].at[s];
       bench::printGoal(at + "ms per step", fmt(1e3 * ours.seconds_per_step),
                        fmt(1e3 * peer.seconds_per_step) + " (Bullet's)", ours.seconds_per_step <= peer.seconds_per_step);
-      bench::printGoal(at + "penetration in the last step [mm]", fmt(1e3 * ours.last_penetration),
-                       fmt(1e3 * peer.last_penetration) + " (Bullet's)", ours.last_penetration <= peer.last_penetration);
+      bench::printGoal(at + "penetration in the last step, median of " + std::to_string(kShakenRuns) +
+                           " runs shifted by 1 nm [mm]",
+                       fmt(1e3 * ours.last_penetration_median), fmt(1e3 * peer.last_penetration_median) + " (Bullet's)",
+                       ours.last_penetration_median <= peer.last_penetration_median);
 #else
       bench::printGoal(at + "ms per step", fmt(1e3 * ours.seconds_per_step), "Bullet's (not installed in this run)", false);
-      bench::printGoal(at + "penetration in the last step [mm]", fmt(1e3 * ours.last_penetration),
-                       "Bullet's (not installed in this run)", false);
+      bench::printGoal(at + "penetration in the last step, median of " + std::to_string(kShakenRuns) +
+                           " runs shifted by 1 nm [mm]",
+                       fmt(1e3 * ours.last_penetration_median), "Bullet's (not installed in this run)", false);
 #endif
     }
     return 0;

@@ -43,9 +43,9 @@ TEST_CASE("textbook scenes, sequential impulses: a 100:1 heavy box stays on a li
   CHECK(checkScenes({"heavy on light", "overlap recovery", "dominoes"}) == 3);
 }
 
-TEST_CASE("textbook scenes, sequential impulses: a stack of 10 cubes stands, sunk by its 10 slops", "[lab05][pts=1][sec=2][sec=3][sec=4][sec=5]") {
+TEST_CASE("textbook scenes, sequential impulses: a stack of 10 cubes stands and settles under 5 mm", "[lab05][pts=1][sec=2][sec=3][sec=4][sec=5]") {
   // The stack is chaotic: a nanometre shift of the start, or the same impulses summed in another
-  // order, moves its largest sway anywhere from 0.1 to 10 cm. So it runs 9 times (as it is, then
+  // order, moves its largest sway anywhere from 0.1 to 15 cm. So it runs 9 times (as it is, then
   // shifted by up to 1 nm) and the median is checked, with every run still standing.
   const std::vector<SpreadMeasure> spread = runSuiteSceneShaken(
       "stack of 10 cubes", [](const Scene& scene) { return std::make_unique<WorldEngine>(World(scene, Settings{})); });
@@ -53,16 +53,15 @@ TEST_CASE("textbook scenes, sequential impulses: a stack of 10 cubes stands, sun
   const SpreadMeasure& sunk = spread[0];
   const SpreadMeasure& sway = spread[1];
   CAPTURE(sunk.median.value, sunk.largest, sway.median.value, sway.largest);
-  // Lab 5's sink bar is the slop's, not the suite's (Lab 6 meets that): position correction
-  // leaves each of the 10 contacts up to its 1 mm slop deep, plus a millimetre of round-off and sway
-  CHECK(sunk.median.value <= 10 * Settings{}.slop + 0.001);
+  // The suite's 5 mm on the median run: the Gauss-Seidel position correction leaves each of the
+  // 10 contacts near its 0.2 mm slop (3.0 mm on the median of 2000 shifted runs, 6.7 mm at most)
+  CHECK(sunk.median.pass());
   CHECK(sunk.median.value >= 0.0);
-  // 2 cm in any run (9.8 mm at most in 2000): two slops per contact; a stack that sinks through
-  // goes down by metres
+  // 2 cm in any run: a stack that sinks through goes down by metres
   CHECK(sunk.largest <= 0.02);
-  // Half an edge on the median run: sequential impulses sway the stack 4.5 cm on the median of
-  // 2000 shifted runs (11.8 cm at most), so the suite's quarter edge would fail 1 run in 3 by chance
+  // Half an edge on the median run: sequential impulses sway the stack 5 cm on the median of
+  // 2000 shifted runs (15 cm at most), so the suite's quarter edge would fail 1 run in 2 by chance
   CHECK(sway.median.value <= 0.1);
-  // An edge in any run: a stack that topples moves by metres
-  CHECK(sway.largest <= 0.2);
+  // 30 cm in any run: a stack that topples moves by metres
+  CHECK(sway.largest <= 0.3);
 }

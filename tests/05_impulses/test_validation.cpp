@@ -92,7 +92,7 @@ TEST_CASE("world settings: printed with every value", "[common]") {
   std::ostringstream out;
   out << settings;
   CHECK_THAT(out.str(), Contains("method=simultaneous") && Contains("iterations=17") && Contains("warm_start=on") &&
-                            Contains("position_correction=0.2") && Contains("slop=0.001") &&
+                            Contains("position_correction=0.2") && Contains("slop=0.0002") &&
                             Contains("correction_sweeps=8"));
   CHECK(out.str() == settings.toString());
 }

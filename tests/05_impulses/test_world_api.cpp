@@ -170,6 +170,30 @@ TEST_CASE("contact suite: shaken runs shift only the moving bodies, by at most t
   CHECK(two[1].largest == second);
 }
 
+TEST_CASE("shaken scene: seed 0 is the scene, others shift each moving body by at most the shift in x and y", "[common]") {
+  const Scene rain = boxRain(20, 3);
+  const Scene same = shakenScene(rain, 0);
+  const Scene one = shakenScene(rain, 1, 1e-6), again = shakenScene(rain, 1, 1e-6), two = shakenScene(rain, 2, 1e-6);
+  REQUIRE(one.states.size() == rain.states.size());
+  bool moved = false;
+  for (std::size_t i = 0; i < rain.states.size(); ++i) {
+    CAPTURE(i);
+    CHECK(same.states[i].x == rain.states[i].x);
+    const Vec3 d = one.states[i].x - rain.states[i].x;
+    CHECK(d.z() == 0.0);
+    CHECK(d.cwiseAbs().maxCoeff() <= 1e-6);
+    if (rain.bodies[i].fixed) CHECK(d.isZero(0.0));  // the ground and the walls stay
+    CHECK(one.states[i].x == again.states[i].x);      // seeded: the same seed, the same shifts
+    CHECK(one.states[i].q.coeffs() == rain.states[i].q.coeffs());
+    CHECK(one.states[i].P == rain.states[i].P);
+    moved = moved || (!rain.bodies[i].fixed && one.states[i].x != two.states[i].x);
+  }
+  CHECK(moved);  // another seed, other shifts
+  CHECK(shakenScene(rain, 5, 0.0).states[7].x == rain.states[7].x);
+  CHECK_THROWS_WITH(shakenScene(rain, 1, -1e-9), Contains("shakenScene shift must be finite and >= 0"));
+  CHECK_THROWS_WITH(shakenScene(rain, 1, INFINITY), Contains("shakenScene shift must be finite"));
+}
+
 TEST_CASE("contact suite: shaken runs refuse an unknown scene, no runs, a bad shift and a maker without engine", "[common]") {
   const SuiteEngineMaker world = [](const Scene& scene) { return std::make_unique<WorldEngine>(World(scene, Settings{})); };
   CHECK_THROWS_WITH(runSuiteSceneShaken("stack", world), Contains("no suite scene is called 'stack'"));

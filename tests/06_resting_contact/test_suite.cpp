@@ -56,7 +56,7 @@ TEST_CASE("textbook scenes, resting contact: a stack of 10 cubes stands and sett
   // The suite's 5 mm on the median run (2.3 mm on the median of 2000 shifted runs, 6.9 mm at most)
   CHECK(sunk.median.pass());
   // 1 cm in any run: the Baumgarte term leaves each of the 10 contacts up to its 1 mm slop deep
-  CHECK(sunk.largest <= 10 * restingWorldSettings().slop);
+  CHECK(sunk.largest <= 10 * RestingSettings{}.slop);
   // Half an edge on the median run: 100 PGS sweeps sway the stack 2.4 cm on the median of 2000
   // shifted runs and beyond the suite's quarter edge in 1 run of 5, so that bar would fail by chance
   CHECK(sway.median.value <= 0.1);
@@ -83,6 +83,6 @@ TEST_CASE("textbook scenes, resting contact: with converged PGS the stack of 10 
   // 5 cm in any run (2.6 cm at most in 2000): still standing, a quarter of an edge
   CHECK(sway.largest <= 0.05);
   // 1 cm in any run: the Baumgarte term leaves each of the 10 contacts up to its 1 mm slop deep
-  CHECK(sunk.largest <= 10 * restingWorldSettings().slop);
+  CHECK(sunk.largest <= 10 * RestingSettings{}.slop);
   CHECK(sunk.median.value >= 0.0);
 }

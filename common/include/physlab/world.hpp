@@ -118,7 +118,7 @@ struct Settings {
   double penalty_d = 0.0;             ///< penalty damping d [N s/m]
   bool use_broad_phase = true;        ///< Lab 4's incremental AABB tree before the narrow phase (else every pair)
   double position_correction = 0.2;   ///< impulse methods: fraction of each point's overlap beyond the slop removed per step by moving and turning the bodies, in [0, 1] (0: off)
-  double slop = 0.001;                ///< overlap the position correction leaves alone [m]
+  double slop = 0.0002;               ///< overlap the position correction leaves alone [m]
   int correction_sweeps = 8;          ///< Gauss-Seidel sweeps of the position correction over the points, alternately forward and backward, >= 1
 
   /// One line naming every setting and its value.
@@ -453,6 +453,12 @@ Scene thrownSphere(double v0, double mu);
 /// A container (ground plus four fixed walls, 2 x 2 m) and `count` boxes and spheres above it,
 /// placed on a grid without overlap with small random velocities; the same seed gives the same rain.
 Scene boxRain(int count, std::uint64_t seed);
+/// `scene` with every moving body's start shifted by up to `shift` [m] in x and y (uniform,
+/// seeded; seed 0 returns the scene as it is). Many-body scenes are chaotic: a nanometre moves
+/// where a stack sways to by centimetres, as another order of the same sums does, so one run is
+/// one draw and a fair figure is a median over shifted runs. InvalidInput for a shift that is
+/// negative or not finite.
+Scene shakenScene(const Scene& scene, std::uint64_t seed, double shift = 1e-9);
 ///@}
 
 }  // namespace physlab

@@ -1,6 +1,8 @@
 // Lab 5 scenes for tests and demos: a bouncing ball, Newton's cradle, a sliding box, a sphere
 // thrown without spin, and a rain of boxes and spheres into a container.
+#include <cmath>
 #include <random>
+#include <string>
 
 #include "physlab/error.hpp"
 #include "physlab/world.hpp"
@@ -84,6 +86,22 @@ Scene boxRain(int count, std::uint64_t seed) {
     scene.states.push_back(state);
   }
   return scene;
+}
+
+Scene shakenScene(const Scene& scene, std::uint64_t seed, double shift) {
+  if (!(shift >= 0.0 && std::isfinite(shift))) {
+    throw InvalidInput("shakenScene shift must be finite and >= 0, got " + std::to_string(shift));
+  }
+  Scene shaken = scene;
+  if (seed == 0) return shaken;
+  std::mt19937_64 engine(seed);
+  std::uniform_real_distribution<double> uniform(-shift, shift);
+  for (std::size_t i = 0; i < shaken.bodies.size() && i < shaken.states.size(); ++i) {
+    if (shaken.bodies[i].fixed) continue;
+    shaken.states[i].x.x() += uniform(engine);
+    shaken.states[i].x.y() += uniform(engine);
+  }
+  return shaken;
 }
 
 }  // namespace physlab

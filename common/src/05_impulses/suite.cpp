@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <random>
 
 #include "physlab/contact_suite.hpp"
 #include "physlab/error.hpp"
@@ -424,15 +423,7 @@ std::vector<SpreadMeasure> runSuiteSceneShaken(const std::string& name, const Su
       if (candidate->name() == name) scene = std::move(candidate);
     }
     if (!scene) throw InvalidInput("runSuiteSceneShaken: no suite scene is called '" + name + "'");
-    Scene start = scene->scene();
-    std::mt19937_64 engine(static_cast<std::uint64_t>(run));
-    std::uniform_real_distribution<double> uniform(-shift, shift);
-    for (std::size_t i = 0; run > 0 && i < start.bodies.size(); ++i) {
-      if (start.bodies[i].fixed) continue;
-      start.states[i].x.x() += uniform(engine);
-      start.states[i].x.y() += uniform(engine);
-    }
-    std::unique_ptr<SuiteEngine> made = make(start);
+    std::unique_ptr<SuiteEngine> made = make(shakenScene(scene->scene(), static_cast<std::uint64_t>(run), shift));
     if (!made) throw InvalidInput("runSuiteSceneShaken: the engine maker returned no engine");
     const std::vector<Measure> measures = runSuiteScene(*scene, *made);
     if (run == 0) {
