@@ -97,7 +97,7 @@ using SuiteEngineMaker = std::function<std::unique_ptr<SuiteEngine>(const Scene&
 ///
 /// Why: a tall stack is chaotic. Shifting its cubes by a nanometre, or computing the same
 /// impulses in another order, moves where its top sways to by centimetres (Lab 5's World, 2000
-/// shifts of the 10-cube stack: largest drift from 0.16 to 11.8 cm, median 4.5 cm). One run is one
+/// shifts of the 10-cube stack: largest drift from 0.1 to 15 cm, median 5.0 cm). One run is one
 /// draw; the median of several is a property of the engine. Throws InvalidInput for an unknown
 /// name, runs < 1, a shift that is negative or not finite, or a maker that returns no engine.
 std::vector<SpreadMeasure> runSuiteSceneShaken(const std::string& name, const SuiteEngineMaker& make, int runs = 9,
