@@ -229,7 +229,7 @@ void World::step(double h) {
   respond(h);
   // Positions and orientations with the new velocities
   integrate(h);
-  // Overlap the velocities cannot remove: move overlapping pairs apart
+  // Overlap the velocities cannot remove: move and turn the bodies apart, point by point
   correctPositions(h);
   // Energies, momenta, penetration
   computeDiagnostics();
