@@ -29,6 +29,9 @@ import tempfile
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from grader import is_identity  # noqa: E402  (the grader's identities of submitted code)
+
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "tests" / "hidden" / "adversarial"
 DEFAULT_FILE = "labs/01_particles/diagnostics.cpp"
@@ -69,15 +72,14 @@ def markers(folders: list) -> set:
 
 
 def leftover_processes() -> list:
-    users = {int(l.split(":")[2]) for l in Path("/etc/passwd").read_text().splitlines()
-             if l.startswith("physlab-sandbox-")}
+    """Processes of the grader's identities (any run's), or of a grade's folders."""
     left = []
     for entry in os.scandir("/proc"):
         if not entry.name.isdigit():
             continue
         try:
             cmdline = Path(f"/proc/{entry.name}/cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
-            if entry.stat().st_uid in users or "physlab-sandbox-" in cmdline or "physlab-grade-" in cmdline:
+            if is_identity(entry.stat().st_uid) or "physlab-sandbox-" in cmdline or "physlab-grade-" in cmdline:
                 left.append(f"{entry.name}: {cmdline[:80]}")
         except OSError:
             continue
@@ -165,6 +167,50 @@ def run_case(path: Path, build: Path, solution_lines: set, hidden_lines: set) ->
     return problems
 
 
+CONCURRENT_LABS = ["02", "05"]  # a lab graded in one process and one graded remotely
+
+
+def concurrent_grades(build: Path) -> list:
+    """Two grades of the reference at once (two terminals, two courses on one machine) must score
+    test for test as one grade alone: neither run's clean-up may reach the other's processes.
+    Returns what went wrong."""
+    work = Path(tempfile.mkdtemp(prefix="physlab-adversarial-"))
+    submission = work / "submission"
+    shutil.copytree(ROOT / "solutions", submission / "labs")
+
+    def grade(out: str) -> subprocess.Popen:
+        return subprocess.Popen([str(ROOT / "physlab"), "grade", str(submission), "--out", str(work / out),
+                                 "--seed", "7", "--labs"] + CONCURRENT_LABS,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+    def scores(out: str) -> dict:
+        try:
+            data = json.loads((work / out / "results.json").read_text())
+        except (OSError, ValueError) as error:
+            return {"results.json": str(error)}
+        return {t["name"]: t["score"] for t in data.get("tests", [])} | {"total": data.get("score")}
+
+    problems = []
+    alone = grade("alone")
+    alone.wait()
+    together = [grade("first"), grade("second")]
+    codes = [p.wait() for p in together]
+    expected = scores("alone")
+    if alone.returncode != 0 or any(codes):
+        problems.append(f"exit statuses: alone {alone.returncode}, together {codes}")
+    for out in ("first", "second"):
+        got = scores(out)
+        differ = sorted(k for k in set(expected) | set(got) if expected.get(k) != got.get(k))
+        if differ:
+            problems.append(f"the {out} of two grades at once differs from a grade alone on {len(differ)} "
+                            f"tests, e.g. {differ[0]}: {got.get(differ[0])} against {expected.get(differ[0])}")
+    left = leftover_processes()
+    if left:
+        problems.append(f"processes left behind: {left[:3]}")
+    shutil.rmtree(work, ignore_errors=True)
+    return problems
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -173,11 +219,12 @@ def main() -> int:
     parser.add_argument("cases", nargs="*", help="case names (default: all)")
     args = parser.parse_args()
     cases = sorted(CASES.glob("*.cpp"))
+    concurrent = not args.quick and (not args.cases or "concurrent_grades" in args.cases)
     if args.cases:
         cases = [c for c in cases if c.stem in args.cases]
     if args.quick:
         cases = [c for c in cases if header(c).get("quick")]
-    if not cases:
+    if not cases and not concurrent:
         raise SystemExit("adversarial: no such case")
     solution_lines = markers([ROOT / "solutions"])
     hidden_lines = markers([p for p in (ROOT / "tests" / "hidden").glob("[0-9][0-9]_*")])
@@ -187,6 +234,15 @@ def main() -> int:
         problems = run_case(case, Path(args.build).resolve(), solution_lines, hidden_lines)
         verdict = "held" if not problems else "BROKEN"
         print(f"{verdict:6} {case.stem:22} {time.monotonic() - start:5.0f} s  {header(case).get('adversarial', '')}")
+        for p in problems:
+            print(f"         {p}")
+        held += not problems
+        failed += bool(problems)
+    if concurrent:  # not a submission: two grades of the reference at once (a few minutes)
+        start = time.monotonic()
+        problems = concurrent_grades(Path(args.build).resolve())
+        print(f"{'held' if not problems else 'BROKEN':6} {'concurrent_grades':22} {time.monotonic() - start:5.0f} s  "
+              f"two grades of the reference at once score as one alone")
         for p in problems:
             print(f"         {p}")
         held += not problems

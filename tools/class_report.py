@@ -122,7 +122,10 @@ def write_tests_csv(out: Path, rows: dict) -> None:
 def page(rows: dict, scores: dict, graded: dict, course) -> str:
     esc = html.escape
     times = [seconds for _, _, seconds in graded.values()]
-    title = f"PhysLab class report: {len(graded)} submissions" + (f", course {course.name}" if course else "")
+    failed = {name: data["extra_data"]["not_graded"] for name, (data, _, _) in graded.items()
+              if data.get("extra_data", {}).get("not_graded")}
+    title = f"PhysLab class report: {len(graded) - len(failed)} submissions graded" + \
+        (f", {len(failed)} not graded" if failed else "") + (f", course {course.name}" if course else "")
     parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{esc(title)}</title>",
              "<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
              "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px;"
@@ -131,6 +134,9 @@ def page(rows: dict, scores: dict, graded: dict, course) -> str:
              f"<h1>{esc(title)}</h1>",
              f"<p>Graded in {sum(times) / 60:.1f} min of grading time, {sum(times) / len(times):.0f} s "
              f"a submission on average (slowest {max(times):.0f} s).</p>",
+             *([f"<h2>Not graded</h2><p>The grading failed on these (twice), not their code: grade them "
+                f"again.</p><ul>" + "".join(f"<li>{esc(n)}: {esc(why)}</li>" for n, why in failed.items()) + "</ul>"]
+               if failed else []),
              "<h2>Scores per lab</h2><table><tr><th>lab</th><th>points</th><th>mean</th><th>median</th>"
              "<th>lowest</th><th>highest</th></tr>"]
     for stage, (percents, possible) in scores.items():

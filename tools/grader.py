@@ -13,12 +13,10 @@ import argparse
 import concurrent.futures
 import ctypes
 import functools
-import grp
 import hashlib
 import hmac
 import json
 import os
-import pwd
 import re
 import secrets
 import shutil
@@ -47,8 +45,14 @@ TEST_MEMORY = 2 << 30        # address space of a test process; the largest test
 COMPILE_MEMORY = 4 << 30     # address space of the compiler on one lab file
 COMPILE_OUTPUT = 256 << 20   # bytes of one object file (ours are under 2 MB)
 SANDBOX_PROCESSES = 64       # processes a sandbox user may have at once
-SANDBOX_USER = "physlab-sandbox-{}"
-SANDBOX_GROUP = "physlab-class-{}"  # one per submission graded at the same time (Sandbox)
+# Identities of submitted code when the grader runs as root: a number no other run on the machine
+# has, IDENTITY_BASE + (the grader's process id << 8) + n, with n a slot (a parallel job) or, for
+# groups, a submission graded at the same time. Process ids are unique while their process runs,
+# so two grades at once (two terminals, a grade beside `./physlab mutants`) never share one, and
+# the clean-up of one ("kill every process of this identity") never reaches the other's. No user
+# or group is created: the kernel needs only the numbers.
+IDENTITY_BASE = 0x10000000
+IDENTITY_SPAN = 1 << 30  # (largest process id, 2^22) << 8
 SHARED_LIBRARIES = ("libstdc++.so.6", "libm.so.6", "libc.so.6", "libgcc_s.so.1")
 # Sections a compiled lab file may contain. Anything else (.preinit_array, prioritised
 # .init_array.NNNNN, .ctors, .init, linker directives) could run code before the harness or change
@@ -201,6 +205,25 @@ class TestCase:
     @property
     def passed(self) -> bool:
         return self.status == "passed"
+
+
+class GradingFailure(Exception):
+    """The grading itself failed (not the submission): a stub that does not compile, a compile
+    killed from outside, a sandbox that does not start. Never a score: the submission is "not
+    graded", a class grade tries it once more, and `grade` exits non-zero."""
+
+
+class SubmissionError(Exception):
+    """The submission cannot be graded as it is (no labs/ folder): a score of 0 that says why."""
+
+
+@dataclass(frozen=True)
+class Program:
+    """What runs a test: a test executable that links the submitted code (its verdict from the
+    notary), or a checker that links none and starts `worker`, the submitted code's process."""
+
+    exe: Path
+    worker: Path = None
 
 
 @dataclass
@@ -433,17 +456,15 @@ class Sandbox:
     lock = threading.Lock()
     live = set()
 
-    def __init__(self, jobs: int, switch_user: bool, first: int = 0, group: str = ""):
+    def __init__(self, jobs: int, switch_user: bool, first: int = 0, group=None):
         self.root = switch_user and os.geteuid() == 0
         self.slots = list(range(first, first + max(1, jobs)))
+        if self.slots[-1] > 127:
+            raise RuntimeError("more than 128 parallel jobs: lower --jobs")
         self.free = list(self.slots)
         self.cond = threading.Condition()
-        self.gid = None
-        if self.root:
-            for slot in self.slots:
-                ensure_user(SANDBOX_USER.format(slot))
-            if group:
-                self.gid = ensure_group(group)
+        self.gid = identity(group) if self.root and group is not None else None
+        self.isolation = None  # how checkers start workers (Isolation), for remote stages
         try:  # orphans of a killed test become our children, so the sweep can find them
             ctypes.CDLL(None, use_errno=True).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
         except (OSError, AttributeError):
@@ -461,10 +482,8 @@ class Sandbox:
             self.cond.notify()
 
     def ids(self, slot: int):
-        if not self.root:
-            return None
-        entry = pwd.getpwnam(SANDBOX_USER.format(slot))
-        return entry.pw_uid, entry.pw_gid
+        """(uid, gid) of the slot's identity as root; None otherwise."""
+        return (identity(slot), identity(slot)) if self.root else None
 
     def limits(self, memory: int, cpu_seconds: float, fsize: int) -> list:
         nproc = SANDBOX_PROCESSES if self.root else count_processes(os.getuid()) + SANDBOX_PROCESSES
@@ -541,22 +560,14 @@ class Sandbox:
                 remove_files_of(self.ids(slot)[0])
 
 
-def ensure_group(name: str) -> int:
-    """The id of the system group `name`, created on first use."""
-    try:
-        return grp.getgrnam(name).gr_gid
-    except KeyError:
-        subprocess.run(["groupadd", "--system", name], check=True, capture_output=True)
-        return grp.getgrnam(name).gr_gid
+def identity(n: int) -> int:
+    """This run's identity number n (a uid or gid): see IDENTITY_BASE."""
+    return IDENTITY_BASE + (os.getpid() << 8) + n
 
 
-def ensure_user(name: str) -> None:
-    try:
-        pwd.getpwnam(name)
-    except KeyError:
-        subprocess.run(["useradd", "--system", "--no-create-home", "--home-dir", "/nonexistent",
-                        "--shell", "/usr/sbin/nologin", "--user-group", name],
-                       check=True, capture_output=True)
+def is_identity(number: int) -> bool:
+    """Whether a uid is one the grader gives submitted code (in any run)."""
+    return IDENTITY_BASE <= number < IDENTITY_BASE + IDENTITY_SPAN
 
 
 def kill_group(pid: int) -> None:
@@ -605,6 +616,76 @@ def remove_files_of(uid: int, folders=("/tmp", "/var/tmp", "/dev/shm")) -> None:
                 pass
 
 
+class Isolation:
+    """How a checker starts its worker (docs/grading.md, "Where submitted code runs"): in
+    bubblewrap's namespaces (no other process, no network, a file system holding the worker
+    alone) with the seccomp filter, which lets it compute and talk on its pipes only; or, where
+    namespaces are refused (an unprivileged container), with the filter alone, installed by the
+    checker before the worker starts, under the run's own identity."""
+
+    def __init__(self, kit: "Kit", folder: Path, sandbox: Sandbox):
+        """Probes, as the identity tests run under, with a copy of a reference worker in `folder`
+        (one the sandbox's identities may read), which kind the machine allows."""
+        ids = sandbox.ids(sandbox.slots[0])
+        extra = [sandbox.gid] if ids and sandbox.gid is not None else []
+        self.filter = folder / "worker.bpf"
+        shutil.copyfile(kit.toolchain["worker_filter"], self.filter)
+        os.chmod(self.filter, 0o644)
+        self.bwrap = shutil.which("bwrap")
+        self.why = "bubblewrap (bwrap) is not installed"
+        if self.bwrap:
+            reference = next(spec["reference_worker"] for spec in kit.stages.values() if "checker" in spec)
+            probe = folder / "probe-worker"
+            shutil.copyfile(reference, probe)
+            os.chmod(probe, 0o755)
+            try:
+                proc = subprocess.run(["/bin/sh", "-c", 'exec "$@" 5<"$PHYSLAB_FILTER"', "sh"] + self.command(probe),
+                                      env={"PATH": "/usr/bin:/bin", "PHYSLAB_FILTER": str(self.filter)},
+                                      user=ids[0] if ids else None, group=ids[1] if ids else None,
+                                      extra_groups=extra if ids else None, capture_output=True, text=True,
+                                      errors="replace", timeout=30)
+                self.why = "" if proc.returncode == 0 else \
+                    f"namespaces refused: {clean(proc.stderr).strip()[:200] or f'bwrap exited {proc.returncode}'}"
+            except (OSError, subprocess.TimeoutExpired) as error:
+                self.why = f"bwrap did not start: {error}"
+            finally:
+                probe.unlink(missing_ok=True)
+
+    def command(self, worker: Path) -> list:
+        return [self.bwrap, "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
+                "--clearenv", "--ro-bind", str(worker), "/worker", "--seccomp", "5", "--chdir", "/", "/worker"]
+
+    def compiling(self, cmd: list, work: Path, include: Path) -> list:
+        """`cmd` (a compile of a submitted file in `work`) in bubblewrap's namespaces where they
+        are allowed: the compiler sees the system's files (/usr), the framework's headers and the
+        file, and nothing of the instructor's tree, other submissions or the network."""
+        if self.why:
+            return cmd
+        view = ["--ro-bind", "/usr", "/usr"]
+        for link in ("/bin", "/lib", "/lib64", "/sbin"):
+            if os.path.islink(link):
+                view += ["--symlink", os.readlink(link), link]
+            elif os.path.isdir(link):
+                view += ["--ro-bind", link, link]
+        if os.path.isdir("/etc/alternatives"):
+            view += ["--ro-bind", "/etc/alternatives", "/etc/alternatives"]
+        return [self.bwrap, "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
+                *view, "--dev", "/dev", "--tmpfs", "/tmp", "--ro-bind", str(include), str(include),
+                "--bind", str(work), str(work), "--chdir", str(work), "--"] + cmd
+
+    def describe(self) -> str:
+        if not self.why:
+            return "your code ran in a process of its own: bubblewrap namespaces and a seccomp filter"
+        return f"your code ran in a process of its own: a seccomp filter and this run's own identity ({self.why})"
+
+    def environment(self, worker: Path) -> dict:
+        """What a checker needs to start `worker` (tests/support/remote/remote.cpp)."""
+        if not self.why:
+            return {"PHYSLAB_WORKER": "\x1f".join(self.command(worker)), "PHYSLAB_WORKER_FILTER": str(self.filter)}
+        return {"PHYSLAB_WORKER": str(worker), "PHYSLAB_WORKER_FILTER": str(self.filter),
+                "PHYSLAB_WORKER_FILTER_MODE": "install"}
+
+
 class Deadline:
     """The time left for grading; None means no overall limit."""
 
@@ -615,7 +696,7 @@ class Deadline:
         return float("inf") if self.end is None else self.end - time.monotonic()
 
 
-def run_one(sandbox: Sandbox, exe: Path, case: TestCase, seed: int, timeout: float,
+def run_one(sandbox: Sandbox, program: Program, case: TestCase, seed: int, timeout: float,
             deadline: Deadline, scratch: Path, homes: Path) -> TestCase:
     """Runs one test case in homes/home-<slot>, its output and verdict files in the private
     `scratch`; its status comes from the harness's authenticated verdict."""
@@ -625,7 +706,7 @@ def run_one(sandbox: Sandbox, exe: Path, case: TestCase, seed: int, timeout: flo
         return case
     slot = sandbox.acquire()
     try:
-        run_sandboxed_test(sandbox, slot, exe, case, seed, budget, scratch, homes)
+        run_sandboxed_test(sandbox, slot, program, case, seed, budget, scratch, homes)
     except Exception as error:  # an error of the grader's own costs this test, not the grade
         case.status, case.output = "crashed", f"the grader could not run this test: {error}"
     finally:
@@ -633,7 +714,7 @@ def run_one(sandbox: Sandbox, exe: Path, case: TestCase, seed: int, timeout: flo
     return case
 
 
-def run_sandboxed_test(sandbox: Sandbox, slot: int, exe: Path, case: TestCase, seed: int,
+def run_sandboxed_test(sandbox: Sandbox, slot: int, program: Program, case: TestCase, seed: int,
                        budget: float, scratch: Path, homes: Path) -> None:
     key = secrets.token_hex(32)
     work = Path(tempfile.mkdtemp(dir=scratch, prefix="test-"))
@@ -644,12 +725,14 @@ def run_sandboxed_test(sandbox: Sandbox, slot: int, exe: Path, case: TestCase, s
         os.close(write_end)
         out_fd = os.open(work / "output", os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
         verdict_fd = os.open(work / "verdict", os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
-        cmd = [str(exe), escape_spec(case.name), "-r", "xml", "--rng-seed", str(seed)]
+        cmd = [str(program.exe), escape_spec(case.name), "-r", "xml", "--rng-seed", str(seed)]
+        env = {"PHYSLAB_VERDICT": f"{read_end}:{verdict_fd}:{case.name.encode('utf-8').hex()}"}
+        if program.worker is not None:
+            env.update(sandbox.isolation.environment(program.worker))
         try:
             code, case.seconds = sandbox.run(
                 cmd, slot=slot, cwd=home, timeout=budget, memory=TEST_MEMORY, stdout=out_fd,
-                pass_fds=(read_end, verdict_fd),
-                extra_env={"PHYSLAB_VERDICT": f"{read_end}:{verdict_fd}:{case.name.encode('utf-8').hex()}"})
+                pass_fds=(read_end, verdict_fd), extra_env=env)
         finally:
             for fd in (read_end, out_fd, verdict_fd):
                 os.close(fd)
@@ -660,6 +743,10 @@ def run_sandboxed_test(sandbox: Sandbox, slot: int, exe: Path, case: TestCase, s
 
 
 # How the harness's child ends (tests/support/runner.cpp, Outcome): only 0 is a pass.
+# Exit statuses of a compile killed by SIGKILL or SIGTERM (directly, or as bubblewrap reports its
+# child's end, 128 + the signal): nothing the grader does to a compile in time sends them.
+KILLED = (-signal.SIGKILL, -signal.SIGTERM, 128 + signal.SIGKILL, 128 + signal.SIGTERM)
+NOT_GRADED = 5  # a remote test whose worker could not be started: the grading failed, not the code
 OUTCOMES = {1: None, 3: "the test ran but asserted nothing",
             4: "the harness ran other test cases than this one"}
 
@@ -681,6 +768,9 @@ def judge(case: TestCase, code, budget: float, key: str, verdicts: str, output: 
         return
     if verdict == ("exit", 0):
         case.status, case.output = "passed", ""
+        return
+    if verdict == ("exit", NOT_GRADED):
+        case.status, case.output = "not graded", output.strip().splitlines()[-1][:OUTPUT_LIMIT] if output.strip() else ""
         return
     if verdict is not None and verdict[0] == "signal":
         number = verdict[1]
@@ -713,7 +803,7 @@ def run_cases(sandbox: Sandbox, jobs: list, seed: int, timeout: float, deadline:
 # ---- reports -----------------------------------------------------------------------------------
 
 SYMBOL = {"passed": "PASS", "failed": "FAIL", "not implemented": "TODO", "timed out": "TIME",
-          "crashed": "CRSH", "not compiled": "COMP", "not run": "----"}
+          "crashed": "CRSH", "not compiled": "COMP", "not run": "----", "not graded": "NGRD"}
 
 
 @functools.lru_cache(maxsize=None)
@@ -921,6 +1011,22 @@ def failure_outputs(out: Path, title: str, why: str, elapsed: float) -> dict:
     return data
 
 
+def not_graded_outputs(out: Path, title: str, why: str, elapsed: float) -> dict:
+    """report.txt and results.json of a submission the grading failed on (GradingFailure): no
+    score; results.json says "not graded" and why (extra_data.not_graded)."""
+    text = clean(f"{title}\n\nNOT GRADED: {why}\nThe grading failed, not your code: it will be graded again.")
+    data = {"score": 0.0, "max_score": 0.0, "execution_time": round(elapsed, 2),
+            "output": clean(f"Not graded: {why}. The grading failed, not your code: it will be graded again."),
+            "tests": [], "extra_data": {"not_graded": clean(why)}}
+    write_outputs(out, text, data)
+    return data
+
+
+def not_graded(data: dict) -> str:
+    """Why a submission was not graded ("" when it was)."""
+    return data.get("extra_data", {}).get("not_graded", "")
+
+
 def summary_line(results: list) -> tuple:
     cases = [t for r in results for t in r.tests]
     passed = sum(t.passed for t in cases)
@@ -958,6 +1064,32 @@ def course_points(stage: str, cases: list) -> list:
     return kept
 
 
+def remote_pairs(build: Path, stages: list, sandbox: Sandbox, scratch: Path, results: list) -> list:
+    """Jobs that run each remote stage's checkers with the reference's worker, sandboxed as in a
+    grade: the tests must pass through the wire as they do in one process. Their results are
+    added to `results` as "NN_name, checker and worker"."""
+    if not (build / "grading" / "toolchain.json").exists():
+        return []
+    kit = Kit(build)
+    jobs = []
+    for stage in stages:
+        spec = kit.stages.get(stage, {})
+        if "checker" not in spec:
+            continue
+        if sandbox.isolation is None:
+            sandbox.isolation = Isolation(kit, scratch, sandbox)
+        result = StageResult(f"{stage}, checker and worker")
+        for key in ("checker", "checker_hidden"):
+            if spec.get(key) and not Path(spec[key]).exists():
+                result.compile_error += f"{Path(spec[key]).name} was not built\n"
+            elif spec.get(key):  # framework tests grade nothing and run in the ordinary executables
+                cases = [c for c in list_tests(Path(spec[key]), stage) if c.graded]
+                result.tests += cases
+                jobs += [(Program(Path(spec[key]), Path(spec["reference_worker"])), c) for c in cases]
+        results.append(result)
+    return jobs
+
+
 def cmd_run(args) -> int:
     """Run already built tests; print the report; optionally write results.json."""
     start = time.monotonic()
@@ -980,11 +1112,13 @@ def cmd_run(args) -> int:
                 continue
             cases = course_points(stage, list_tests(exe, stage))
             result.tests += cases
-            jobs += [(own_file_executable(exe, c), c) for c in cases]
+            jobs += [(Program(own_file_executable(exe, c)), c) for c in cases]
         results.append(result)
+    if args.variant == "solutions":
+        jobs += remote_pairs(build, stages, sandbox, scratch, results)
     if args.variant == "solutions" and (build / "test_common").exists():
         common = StageResult("common", list_tests(build / "test_common", "common"))
-        jobs += [(build / "test_common", c) for c in common.tests]
+        jobs += [(Program(build / "test_common"), c) for c in common.tests]
         results.append(common)
     for slot in sandbox.slots:
         (scratch / f"home-{slot}").mkdir()
@@ -1087,6 +1221,15 @@ class Kit:
         cmd += self.toolchain["main"] + spec[tests] + spec["framework"] + list(reference)
         cmd += ["-Wl,--whole-archive"] + spec["depends"] + [self.toolchain["common"]]
         return cmd + ["-Wl,--no-whole-archive"] + [str(o) for o in student] + self.toolchain["libraries"]
+
+    def worker_command(self, stage: str, student: list, exe: Path, reference=()) -> list:
+        """Links a worker (a remote stage): the server's table, the submitted objects, the
+        reference's objects of the stage's other files, the framework; statically."""
+        spec = self.stages[stage]
+        cmd = [self.toolchain["compiler"]] + self.toolchain["flags"].split() + ["-static", "-o", str(exe)]
+        cmd += spec["server"] + [str(o) for o in student] + list(reference) + spec["framework"]
+        cmd += ["-Wl,--start-group"] + spec["depends"] + [self.toolchain["common"], "-Wl,--end-group"]
+        return cmd + self.toolchain["worker_libraries"]
 
     def symbols(self, path: str) -> tuple:
         """(defined: name -> nm type, undefined names) of an object or archive's global symbols."""
@@ -1238,10 +1381,18 @@ def demangle(names) -> dict:
 
 def check_object(kit: Kit, stage: str, obj: Path, stub_defined: set, own_defined: set) -> list:
     """Why a student's object may not be linked (empty when it may): what it defines must be what
-    the stub defines, or internal, or a weak copy of an inline function that replaces nothing."""
+    the stub defines, or internal, or a weak copy of an inline function that replaces nothing.
+    In a remote stage the object is linked into a worker alone, which can reach nothing but its
+    pipes whatever it holds: only the first rule is kept, so that a helper's name cannot collide
+    with the reference's (sandbox_notes() says what the sandbox will refuse)."""
+    defined, undefined = kit.symbols(str(obj))
+    if "checker" in kit.stages[stage]:
+        strong = [s for s, t in defined.items() if t not in "WVuvw" and s not in stub_defined]
+        names = demangle(strong)
+        return [f"defines {names[s]}, which the stub does not: make helpers static or put them "
+                f"in an anonymous namespace" for s in strong]
     problems = [f"section {s} is not allowed in a lab file" for s in sections_of(obj)
                 if not ALLOWED_SECTIONS.match(s)]
-    defined, undefined = kit.symbols(str(obj))
     spec = kit.stages[stage]
     test_side = kit.defined_by(kit.toolchain["main"] + spec["tests"] + spec["hidden"])
     library_side = kit.defined_by(spec["framework"] + spec["depends"] + [kit.toolchain["common"]])
@@ -1273,6 +1424,12 @@ def import_problems(kit: Kit, stage: str, obj: Path, own_defined: set) -> list:
     return problems + [f"contains the instruction '{i}', which enters the kernel" for i in kernel_entries(obj)]
 
 
+def sandbox_notes(kit: Kit, stage: str, obj: Path, own_defined: set) -> list:
+    """In a remote stage: what the object calls that its sandbox refuses (files, processes, the
+    network, the kernel directly), as notes; such a call fails when the code runs."""
+    return [f"{p}; in the grader's sandbox that call fails" for p in import_problems(kit, stage, obj, own_defined)]
+
+
 def refusals_ahead(kit: Kit, stage: str) -> list:
     """For a student's own build: the grader's import refusals of the lab files as compiled here,
     so a student learns of them before submitting rather than from a grade of 0."""
@@ -1283,8 +1440,11 @@ def refusals_ahead(kit: Kit, stage: str) -> list:
     own = kit.defined_by([str(o) for o in objects])
     notes = []
     for obj in objects:
-        notes += [f"the grader will refuse {obj.name.removesuffix('.o')}: {p}"
-                  for p in import_problems(kit, stage, obj, own)]
+        if "checker" in kit.stages[stage]:
+            notes += [f"{obj.name.removesuffix('.o')}: {p}" for p in sandbox_notes(kit, stage, obj, own)]
+        else:
+            notes += [f"the grader will refuse {obj.name.removesuffix('.o')}: {p}"
+                      for p in import_problems(kit, stage, obj, own)]
     return notes
 
 
@@ -1356,12 +1516,14 @@ class Builder:
             log_fd = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
             obj = work / name.replace(".cpp", ".o")
             preprocessed = work / name.replace(".cpp", ".ii")
+            isolation = self.sandbox.isolation
+            jail = (lambda cmd: isolation.compiling(cmd, work, self.include)) if isolation else (lambda cmd: cmd)
             try:
-                self.sandbox.run(self.kit.preprocess_command(self.include, work / name, preprocessed),
+                self.sandbox.run(jail(self.kit.preprocess_command(self.include, work / name, preprocessed)),
                                  slot=slot, cwd=work, timeout=budget, memory=COMPILE_MEMORY,
                                  stdout=subprocess.DEVNULL, fsize=COMPILE_OUTPUT)
                 budget = min(self.compile_timeout, self.deadline.left())
-                code, _ = self.sandbox.run(self.kit.compile_command(self.include, work / name, obj),
+                code, _ = self.sandbox.run(jail(self.kit.compile_command(self.include, work / name, obj)),
                                            slot=slot, cwd=work, timeout=budget,
                                            memory=COMPILE_MEMORY, stdout=log_fd, fsize=COMPILE_OUTPUT)
             finally:
@@ -1376,6 +1538,8 @@ class Builder:
                                      {f"{work}/": f"labs/{stage}/", f"{self.include}/": "common/include/"})
             if code is None:
                 return Compiled(error=f"{name}: compilation stopped after {budget:.0f} s")
+            if code in KILLED:  # not by our time limit (code None), nor by a limit of the file's making
+                raise GradingFailure(f"the compiler of {name} was killed from outside (status {code})")
             if code != 0 or not obj.exists():
                 return Compiled(log=log, error=f"{name} did not compile")
             assembly = inline_assembly(preprocessed, work / name)
@@ -1399,10 +1563,13 @@ class Builder:
 
     def link(self, stage: str, tests: str, objects: list, exe: Path, reference: list = ()) -> str:
         """Links the student's `objects` (and the instructor's `reference` objects of the stage's
-        other files); returns '' or an explanation naming the missing or doubly defined functions."""
+        other files) with the `tests` ("tests", "hidden") or, for "worker", into the worker of a
+        remote stage; returns '' or an explanation naming the missing or doubly defined functions."""
         budget = min(120.0, self.deadline.left())
+        command = (self.kit.worker_command(stage, objects, exe, reference) if tests == "worker"
+                   else self.kit.link_command(stage, tests, objects, exe, reference))
         try:
-            proc = subprocess.run(self.kit.link_command(stage, tests, objects, exe, reference), capture_output=True,
+            proc = subprocess.run(command, capture_output=True,
                                   text=True, errors="replace", timeout=max(budget, 1.0))
         except subprocess.TimeoutExpired:
             return "linking stopped at the grading deadline"
@@ -1538,7 +1705,8 @@ def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult
         stub_objs = dict(zip(stubs, pool.map(lambda n: builder.compile(stage, n, stubs[n], "stub-"), stubs)))
     errors = [c.error + ("\n" + c.log if c.log else "") for c in done.values() if c.error]
     if any(s.error for s in stub_objs.values()):
-        raise RuntimeError(f"the instructor's stubs of {stage} do not compile")
+        raise GradingFailure(f"the instructor's stubs of {stage} did not compile here: "
+                             f"{next(c.error for c in stub_objs.values() if c.error)}")
     if errors:
         result.compile_error = "\n".join(errors)
         return None
@@ -1547,6 +1715,8 @@ def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult
     problems = []
     for name, c in done.items():
         problems += [f"{name}: {p}" for p in check_object(kit, stage, c.obj, stub_defined, own_defined)]
+        if "checker" in kit.stages[stage]:
+            result.notes += [f"{name}: {p}" for p in sandbox_notes(kit, stage, c.obj, own_defined)]
     if problems:
         result.compile_error = "refused:\n" + "\n".join(problems[:30])
         return None
@@ -1554,6 +1724,8 @@ def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult
     if warnings:
         result.notes.append("compiler warnings:\n" + warnings[-OUTPUT_LIMIT:])
     objects = {name[:-len(".cpp")]: c.obj for name, c in done.items()}
+    if "checker" in kit.stages[stage]:
+        return build_remote_stage(builder, kit, result, objects, hidden, run_dir)
     exe = builder.private / stage / f"test_{stage}"
     error = builder.link(stage, "tests", list(objects.values()), exe)
     if error:
@@ -1569,11 +1741,61 @@ def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult
             exes["hidden"][None] = hidden_exe
     link_own_files(builder, kit, result, objects, exes)
     for unit, path in exes["tests"].items():
-        visible = run_dir / path.name
-        shutil.copyfile(path, visible)
-        os.chmod(visible, 0o755)
-        exes["tests"][unit] = visible
+        exes["tests"][unit] = Program(runnable(path, run_dir))
+    for unit, path in exes["hidden"].items():
+        exes["hidden"][unit] = Program(path)
     return exes
+
+
+def runnable(path: Path, run_dir: Path) -> Path:
+    """A copy of `path` in the run folder, where the sandbox's identities may execute it."""
+    copy = run_dir / path.name
+    shutil.copyfile(path, copy)
+    os.chmod(copy, 0o755)
+    return copy
+
+
+def build_remote_stage(builder: Builder, kit: Kit, result: StageResult, objects: dict, hidden: list,
+                       run_dir: Path) -> dict:
+    """build_stage() for a remote stage: the instructor's checkers run the tests, and the
+    submitted objects are linked into workers only (all of the lab's files, and for partial credit
+    each file with the reference of the others), in the run folder."""
+    stage, spec = result.stage, kit.stages[result.stage]
+    worker = run_dir / f"worker_{stage}"
+    error = builder.link(stage, "worker", list(objects.values()), worker)
+    if error:
+        result.compile_error = error
+        return None
+    os.chmod(worker, 0o755)
+    checkers = {"tests": runnable(Path(spec["checker"]), run_dir)}
+    if hidden and spec.get("checker_hidden"):
+        checkers["hidden"] = Path(spec["checker_hidden"])  # copied to the run folder after the visible tests
+    exes = {kind: {None: Program(checker, worker)} for kind, checker in checkers.items()}
+    exes.setdefault("hidden", {})
+    reference = spec.get("reference", {})
+    units = sorted({c.unit for c in result.tests if c.unit in objects and c.unit in reference})
+
+    def link(unit):
+        path = run_dir / f"worker_{stage}_{unit}"
+        others = [reference[u] for u in sorted(reference) if u != unit]
+        return builder.link(stage, "worker", [objects[unit]], path, others), path
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=len(builder.sandbox.slots)) as pool:
+        linked = list(pool.map(link, units))
+    for unit, (error, path) in zip(units, linked):
+        if error:
+            result.notes.append(alone_note(unit, error))
+            continue
+        os.chmod(path, 0o755)
+        for kind, checker in checkers.items():
+            exes[kind][unit] = Program(checker, path)
+    return exes
+
+
+def alone_note(unit: str, error: str) -> str:
+    reason = re.sub(r"(\w)\((?:[^()]|\([^()]*\))*\)", r"\1()", error.splitlines()[0])  # names, not signatures
+    return (f"{unit}.cpp does not link with the reference of this lab's other files ({reason}): its "
+            f"tests ran with all of your files of the lab, so they need those written too")
 
 
 def link_own_files(builder: Builder, kit: Kit, result: StageResult, objects: dict, exes: dict) -> None:
@@ -1601,10 +1823,7 @@ def link_own_files(builder: Builder, kit: Kit, result: StageResult, objects: dic
             exes[kind][unit] = path
         elif unit not in alone:
             alone.add(unit)
-            reason = re.sub(r"(\w)\((?:[^()]|\([^()]*\))*\)", r"\1()", error.splitlines()[0])  # names, not signatures
-            result.notes.append(f"{unit}.cpp does not link with the reference of this lab's other files "
-                                f"({reason}): its tests ran with all of your files of the lab, so they "
-                                f"need those written too")
+            result.notes.append(alone_note(unit, error))
 
 
 def in_course(course, stage: str, cases: list) -> list:
@@ -1636,7 +1855,7 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
         stages = graded_stages(args.labs, course)
         labs = find_labs(submission) if submission.is_dir() else None
         if labs is None:
-            raise RuntimeError("no labs/ folder with NN_name stages in the submission")
+            raise SubmissionError("no labs/ folder with NN_name stages in the submission")
         if sandbox.gid is not None:
             # Only this submission's sandbox users (its group) may enter: others graded at the same
             # time cannot reach its hidden tests
@@ -1650,12 +1869,19 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
         for path in [shared / "include"] + list((shared / "include").rglob("*")):
             os.chmod(path, 0o755 if path.is_dir() else 0o644)
         builder = Builder(kit, sandbox, private, shared, deadline, args.compile_timeout)
+        remote = [stage for stage in stages if "checker" in kit.stages.get(stage, {})]
+        if any("checker" in spec for spec in kit.stages.values()):
+            sandbox.isolation = Isolation(kit, run_dir, sandbox)
         visible_jobs, hidden_jobs = [], []
         for stage in stages:
             visible = in_course(course, stage, list_tests(kit.build / f"test_{stage}", stage))
             hidden_ref = kit.build / f"test_{stage}_hidden"
             hidden = in_course(course, stage, list_tests(hidden_ref, stage) if hidden_ref.exists() else [])
+            if stage in remote:  # a framework test grades nothing, and its scenes are slow across the wire
+                visible, hidden = [c for c in visible if c.graded], [c for c in hidden if c.graded]
             result = StageResult(stage, visible + hidden)
+            if stage in remote:
+                result.notes.append(sandbox.isolation.describe())
             exes = build_stage(builder, kit, labs, result, hidden, run_dir)
             if exes is None:
                 for case in result.tests:
@@ -1672,25 +1898,33 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
         run_cases(sandbox, visible_jobs, args.seed, args.timeout, deadline, private, shared, workers)
         sandbox.finish()
         jobs, copies = [], {}
-        for hidden_exe, case in hidden_jobs:
-            if hidden_exe not in copies:
-                copies[hidden_exe] = run_dir / hidden_exe.name
-                shutil.copyfile(hidden_exe, copies[hidden_exe])
-                os.chmod(copies[hidden_exe], 0o755)
-            jobs.append((copies[hidden_exe], case))
+        for program, case in hidden_jobs:
+            if program.exe not in copies:
+                copies[program.exe] = runnable(program.exe, run_dir)
+            jobs.append((Program(copies[program.exe], program.worker), case))
         make_homes(sandbox, shared)
         run_cases(sandbox, jobs, args.seed, args.timeout, deadline, private, shared, workers)
         sandbox.finish()
+        ungraded = [c for r in results for c in r.tests if c.status == "not graded"]
+        if ungraded:
+            raise GradingFailure(f"{len(ungraded)} tests could not start the sandbox of the submitted "
+                                 f"code ({ungraded[0].output or ungraded[0].name})")
         text = report(results, args.seed, title)
         data = gradescope_json(results, time.monotonic() - start)
         write_outputs(out, text, data)
-    except Exception as error:  # the grader must always leave a report behind
+    except SubmissionError as error:  # the submission's own fault: a score of 0 that says why
+        sandbox.finish()
+        text = f"{title}\n\nGRADING FAILED: {error}"
+        data = failure_outputs(out, title, str(error), time.monotonic() - start)
+        results = []
+    except Exception as error:  # the grading's own failure is never a score; a report is still written
         try:
             sandbox.finish()
         except Exception as cleanup:
             error = f"{error}; then, ending the sandbox: {cleanup}"
-        text = f"{title}\n\nGRADING FAILED: {error}"
-        data = failure_outputs(out, title, str(error), time.monotonic() - start)
+        why = str(error) if isinstance(error, GradingFailure) else f"the grader failed: {type(error).__name__}: {error}"
+        text = f"{title}\n\nNOT GRADED: {why}"
+        data = not_graded_outputs(out, title, why, time.monotonic() - start)
         results = []
     finally:
         shutil.rmtree(private, ignore_errors=True)
@@ -1775,7 +2009,7 @@ def cmd_grade(args) -> int:
     parallel = 1 if single or not root else max(1, min(len(args.submissions), os.cpu_count() or 1, args.jobs))
     jobs_each = max(1, args.jobs // parallel)
     sandboxes = [Sandbox(jobs_each, switch_user=True, first=k * jobs_each,
-                         group="" if single else SANDBOX_GROUP.format(k)) for k in range(parallel)]
+                         group=None if single else 255 - k) for k in range(parallel)]
     if sandboxes[0].root:
         for path in (ROOT, Path(args.build).resolve(), out):
             make_private(path)
@@ -1791,21 +2025,36 @@ def cmd_grade(args) -> int:
     if course is not None:
         print(course.summary())
     if single:
-        grade_one(args, kit, sandboxes[0], Path(args.submissions[0]).absolute(), out, course)
+        data, _ = grade_one(args, kit, sandboxes[0], Path(args.submissions[0]).absolute(), out, course)
+        if not_graded(data):
+            print(f"grader: not graded: {not_graded(data)}", file=sys.stderr)
+            return 1
         return 0
     graded = grade_class(args, kit, sandboxes, out, course)
     rows = ["submission,score,max_score"]
-    rows += [f"{name},{data['score']:g},{data['max_score']:g}" for name, (data, _, _) in graded.items()]
+    rows += [f"{name},not graded ({csv_text(not_graded(data))}),"
+             if not_graded(data) else f"{name},{data['score']:g},{data['max_score']:g}"
+             for name, (data, _, _) in graded.items()]
     write_atomically(out / "scores.csv", "\n".join(rows) + "\n")
     import class_report  # the class's tables and page: only an instructor grading a class needs them
     class_report.write(out, graded, course)
     for name, (data, _, seconds) in graded.items():
-        print(f"{name},{data['score']:g},{data['max_score']:g}  ({seconds:.0f} s)")
+        score = f"not graded ({not_graded(data)})" if not_graded(data) else f"{data['score']:g},{data['max_score']:g}"
+        print(f"{name},{score}  ({seconds:.0f} s)")
     times = [seconds for _, _, seconds in graded.values()]
     print(f"{len(times)} submissions, {parallel} at a time: {sum(times) / len(times):.0f} s each on "
           f"average (slowest {max(times):.0f} s)")
     print(f"wrote {out / 'scores.csv'}, {out / 'tests.csv'} and {out / 'class.html'}")
+    failed = [name for name, (data, _, _) in graded.items() if not_graded(data)]
+    if failed:
+        print(f"grader: {len(failed)} not graded (tried twice): {', '.join(failed)}", file=sys.stderr)
+        return 1
     return 0
+
+
+def csv_text(text: str) -> str:
+    """Text for a field of scores.csv: no comma, quote or line break."""
+    return re.sub(r'[,"\n\r]+', " ", text)[:200]
 
 
 def grade_class(args, kit: Kit, sandboxes: list, out: Path, course) -> dict:
@@ -1824,12 +2073,15 @@ def grade_class(args, kit: Kit, sandboxes: list, out: Path, course) -> dict:
                 path = waiting.pop()
             began = time.monotonic()
             data, results = grade_one(args, kit, sandbox, path, out / path.name, course, quiet=True)
+            if not_graded(data):  # the grading failed, not the code: once more
+                data, results = grade_one(args, kit, sandbox, path, out / path.name, course, quiet=True)
             seconds = time.monotonic() - began
             with lock:
                 graded[path.name] = (data, results, seconds)
                 done, total = len(graded), len(paths)
                 left = (time.monotonic() - start) / done * (total - done)
-                print(f"graded {done}/{total}: {path.name} {data['score']:g}/{data['max_score']:g} "
+                score = "not graded" if not_graded(data) else f"{data['score']:g}/{data['max_score']:g}"
+                print(f"graded {done}/{total}: {path.name} {score} "
                       f"in {seconds:.0f} s; about {left / 60:.1f} min left", file=sys.stderr, flush=True)
 
     threads = [threading.Thread(target=worker, args=(sandbox,)) for sandbox in sandboxes]
@@ -1851,7 +2103,7 @@ def grade_class(args, kit: Kit, sandboxes: list, out: Path, course) -> dict:
 # target), no other tool.
 GRADING_FILES = re.compile(r"^(physlab|CMakeLists\.txt|cmake/PhysLab(Dependencies|Docs)?\.cmake|"
                            r"common/.*|solutions/.*|labs/.*|tests/(?!hidden/(mutants|adversarial)/).*|"
-                           r"docs/lab\d\d_[a-z0-9_]+\.md|docs/Doxyfile\.in|tools/(grader|course)\.py)$")
+                           r"docs/lab\d\d_[a-z0-9_]+\.md|docs/Doxyfile\.in|tools/(grader|course|remote_gen)\.py)$")
 
 
 def cmd_gradescope(args) -> int:
