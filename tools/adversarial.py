@@ -23,6 +23,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -211,6 +212,42 @@ def concurrent_grades(build: Path) -> list:
     return problems
 
 
+def killed_compile() -> list:
+    """A compile killed from outside (here: its cc1plus, SIGKILL) is a failure of the grading, not
+    a score: the submission is "not graded", with why, and `grade` exits 3."""
+    work = Path(tempfile.mkdtemp(prefix="physlab-adversarial-"))
+    submission, out = work / "submission", work / "out"
+    shutil.copytree(ROOT / "solutions", submission / "labs")
+    source = submission / "labs" / "02_springs" / "implicit.cpp"
+    source.write_text(source.read_text() + f"\n// {time.time_ns()}: new to the object cache\n")
+    grade = subprocess.Popen([str(ROOT / "physlab"), "grade", str(submission), "--out", str(out), "--labs", "02"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    killed = False
+    while grade.poll() is None and not killed:
+        for entry in os.scandir("/proc"):
+            try:
+                cmdline = Path(f"/proc/{entry.name}/cmdline").read_bytes().split(b"\0")
+            except OSError:
+                continue
+            if cmdline and cmdline[0].endswith(b"cc1plus") and b"-E" not in cmdline \
+                    and any(a.endswith(b"implicit.cpp") for a in cmdline):
+                os.kill(int(entry.name), signal.SIGKILL)
+                killed = True
+                break
+        time.sleep(0.05)
+    code = grade.wait()
+    problems = [] if killed else ["the compile ended before it could be killed"]
+    try:
+        data = json.loads((out / "results.json").read_text())
+    except (OSError, ValueError) as error:
+        data = {}
+        problems.append(f"no valid results.json: {error}")
+    if killed and (code != 3 or "killed from outside" not in data.get("extra_data", {}).get("not_graded", "")):
+        problems.append(f"grade exited {code} with {str(data)[:160]}, not 3 and 'not graded'")
+    shutil.rmtree(work, ignore_errors=True)
+    return problems
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -219,12 +256,11 @@ def main() -> int:
     parser.add_argument("cases", nargs="*", help="case names (default: all)")
     args = parser.parse_args()
     cases = sorted(CASES.glob("*.cpp"))
-    concurrent = not args.quick and (not args.cases or "concurrent_grades" in args.cases)
     if args.cases:
         cases = [c for c in cases if c.stem in args.cases]
     if args.quick:
         cases = [c for c in cases if header(c).get("quick")]
-    if not cases and not concurrent:
+    if not cases and (args.quick or not set(args.cases) & {"concurrent_grades", "killed_compile"}):
         raise SystemExit("adversarial: no such case")
     solution_lines = markers([ROOT / "solutions"])
     hidden_lines = markers([p for p in (ROOT / "tests" / "hidden").glob("[0-9][0-9]_*")])
@@ -238,11 +274,16 @@ def main() -> int:
             print(f"         {p}")
         held += not problems
         failed += bool(problems)
-    if concurrent:  # not a submission: two grades of the reference at once (a few minutes)
+    checks = {"concurrent_grades": ("two grades of the reference at once score as one alone",
+                                    lambda: concurrent_grades(Path(args.build).resolve())),
+              "killed_compile": ("a compile killed from outside is 'not graded', and grade exits 3",
+                                 killed_compile)}
+    for name, (what, check) in checks.items():  # not submissions: the grading's own robustness
+        if args.quick or (args.cases and name not in args.cases):
+            continue
         start = time.monotonic()
-        problems = concurrent_grades(Path(args.build).resolve())
-        print(f"{'held' if not problems else 'BROKEN':6} {'concurrent_grades':22} {time.monotonic() - start:5.0f} s  "
-              f"two grades of the reference at once score as one alone")
+        problems = check()
+        print(f"{'held' if not problems else 'BROKEN':6} {name:22} {time.monotonic() - start:5.0f} s  {what}")
         for p in problems:
             print(f"         {p}")
         held += not problems

@@ -748,6 +748,9 @@ def run_sandboxed_test(sandbox: Sandbox, slot: int, program: Program, case: Test
 # Exit statuses of a compile killed by SIGKILL or SIGTERM (directly, or as bubblewrap reports its
 # child's end, 128 + the signal): nothing the grader does to a compile in time sends them.
 KILLED = (-signal.SIGKILL, -signal.SIGTERM, 128 + signal.SIGKILL, 128 + signal.SIGTERM)
+# What g++ says when one of its passes (cc1plus, as) was killed by SIGKILL or SIGTERM; it then exits 1.
+KILLED_PASS_RE = re.compile(r"(Killed|Terminated) signal terminated program")
+EXIT_NOT_GRADED = 3  # `grade`'s status when a submission was not graded (its outputs say why)
 NOT_GRADED = 5  # a remote test whose worker could not be started: the grading failed, not the code
 OUTCOMES = {1: None, 3: "the test ran but asserted nothing",
             4: "the harness ran other test cases than this one"}
@@ -1543,7 +1546,7 @@ class Builder:
                                      {f"{work}/": f"labs/{stage}/", f"{self.include}/": "common/include/"})
             if code is None:
                 return Compiled(error=f"{name}: compilation stopped after {budget:.0f} s")
-            if code in KILLED:  # not by our time limit (code None), nor by a limit of the file's making
+            if code in KILLED or KILLED_PASS_RE.search(log):  # not our time limit (code None) nor a limit of the file's making
                 raise GradingFailure(f"the compiler of {name} was killed from outside (status {code})")
             if code != 0 or not obj.exists():
                 return Compiled(log=log, error=f"{name} did not compile")
@@ -2033,7 +2036,7 @@ def cmd_grade(args) -> int:
         data, _ = grade_one(args, kit, sandboxes[0], Path(args.submissions[0]).absolute(), out, course)
         if not_graded(data):
             print(f"grader: not graded: {not_graded(data)}", file=sys.stderr)
-            return 1
+            return EXIT_NOT_GRADED
         return 0
     graded = grade_class(args, kit, sandboxes, out, course)
     rows = ["submission,score,max_score"]
@@ -2053,7 +2056,7 @@ def cmd_grade(args) -> int:
     failed = [name for name, (data, _, _) in graded.items() if not_graded(data)]
     if failed:
         print(f"grader: {len(failed)} not graded (tried twice): {', '.join(failed)}", file=sys.stderr)
-        return 1
+        return EXIT_NOT_GRADED
     return 0
 
 

@@ -14,6 +14,6 @@ course=()
 # out) would otherwise surface only at the first submission, as a zero.
 if grep -q "GRADING FAILED\|did not compile" /tmp/physlab-warm-up/report.txt; then
   echo "setup: grading the stubs failed:" >&2
-  grep -m 5 "GRADING FAILED\|did not compile" /tmp/physlab-warm-up/report.txt >&2
+  grep -m 5 "GRADING FAILED\|NOT GRADED\|did not compile" /tmp/physlab-warm-up/report.txt >&2
   exit 1
 fi
