@@ -30,6 +30,13 @@ if(PHYSLAB_RELEASED_LABS AND PHYSLAB_RELEASED AND NOT PHYSLAB_HAVE_SOLUTIONS)
   message(STATUS "later labs build on the released reference of: ${PHYSLAB_RELEASED_LABS}")
 endif()
 
+# Remote grading needs Linux (fork, pipes, a static worker) and the grader's sandbox.
+set(PHYSLAB_REMOTE OFF)
+if(CMAKE_SYSTEM_NAME STREQUAL "Linux" AND PHYSLAB_HAVE_SOLUTIONS AND NOT PHYSLAB_PORTABLE_RUNNER)
+  set(PHYSLAB_REMOTE ON)
+endif()
+find_package(Python3 COMPONENTS Interpreter)
+
 option(PHYSLAB_PORTABLE_RUNNER "Test runner without the grader's notary (automatic where executables are not ELF: macOS, Windows)" OFF)
 
 if(MSVC)
@@ -93,6 +100,39 @@ function(physlab_add_common)
   # Catch2's implementation: -O1 compiles it in 20 s instead of 29 (it is on the path to every
   # test executable) and runs the assertions as fast for the tests' purposes.
   target_compile_options(physlab_test_runner PRIVATE $<IF:$<CXX_COMPILER_ID:MSVC>,/O1,-O1>)
+  # The wire between a checker and its worker (physlab_add_remote), Linux only.
+  set(worker_filter "")
+  if(PHYSLAB_REMOTE)
+    add_library(physlab_remote OBJECT "${PHYSLAB_ROOT}/tests/support/remote/remote.cpp")
+    target_include_directories(physlab_remote PUBLIC "${PHYSLAB_ROOT}/tests/support")
+    target_link_libraries(physlab_remote PUBLIC physlab_common)
+    physlab_cxx(physlab_remote)
+    # The worker's seccomp filter, written once per build (tests/support/remote/filter.cpp).
+    find_path(PHYSLAB_SECCOMP_INCLUDE_DIR seccomp.h)
+    find_library(PHYSLAB_SECCOMP_LIBRARY seccomp)
+    if(NOT PHYSLAB_SECCOMP_INCLUDE_DIR OR NOT PHYSLAB_SECCOMP_LIBRARY)
+      physlab_missing("libseccomp (the grader's sandbox of submitted code)" libseccomp-dev)
+    endif()
+    add_executable(physlab_worker_filter "${PHYSLAB_ROOT}/tests/support/remote/filter.cpp")
+    target_include_directories(physlab_worker_filter SYSTEM PRIVATE "${PHYSLAB_SECCOMP_INCLUDE_DIR}")
+    target_link_libraries(physlab_worker_filter PRIVATE "${PHYSLAB_SECCOMP_LIBRARY}")
+    physlab_warnings(physlab_worker_filter)
+    add_custom_command(OUTPUT "${CMAKE_BINARY_DIR}/grading/worker.bpf"
+                       COMMAND physlab_worker_filter "${CMAKE_BINARY_DIR}/grading/worker.bpf"
+                       DEPENDS physlab_worker_filter COMMENT "The grading worker's seccomp filter")
+    add_custom_target(physlab_worker_bpf ALL DEPENDS "${CMAKE_BINARY_DIR}/grading/worker.bpf")
+    set(worker_filter "${CMAKE_BINARY_DIR}/grading/worker.bpf")
+    # A worker is linked statically (its sandbox holds no file but itself): the static Boost
+    # that the framework's plotting code needs, and nothing else beyond the C++ runtime.
+    find_library(PHYSLAB_BOOST_IOSTREAMS_STATIC libboost_iostreams.a)
+    find_library(PHYSLAB_BOOST_FILESYSTEM_STATIC libboost_filesystem.a)
+    if(NOT PHYSLAB_BOOST_IOSTREAMS_STATIC OR NOT PHYSLAB_BOOST_FILESYSTEM_STATIC)
+      physlab_missing("Boost's static libraries (a grading worker is linked statically)"
+                      "libboost-iostreams-dev libboost-filesystem-dev")
+    endif()
+    set(PHYSLAB_WORKER_LIBRARIES "${PHYSLAB_BOOST_IOSTREAMS_STATIC}" "${PHYSLAB_BOOST_FILESYSTEM_STATIC}" -pthread
+        CACHE INTERNAL "what a grading worker links besides the labs and the framework")
+  endif()
   # The grader's notary forks in .preinit_array: ELF executables only. Elsewhere, or on request
   # (CI checks that path on Linux), the runner is the portable one (see runner.cpp), and
   # toolchain.json says so: the grader refuses to grade with it.
@@ -109,12 +149,14 @@ function(physlab_add_common)
   file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/grading/toolchain.json" CONTENT "{
   \"compiler\": \"${CMAKE_CXX_COMPILER}\",
   \"notary\": ${notary},
+  \"worker_filter\": \"${worker_filter}\",
   \"flags\": \"${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${build_type}} ${CMAKE_CXX17_STANDARD_COMPILE_OPTION}\",
   \"warnings\": \"${warnings}\",
   \"include\": \"${PHYSLAB_ROOT}/common/include\",
   \"system_include\": [\"$<JOIN:$<TARGET_PROPERTY:Eigen3::Eigen,INTERFACE_INCLUDE_DIRECTORIES>,\",\">\"],
   \"main\": [\"$<JOIN:$<TARGET_OBJECTS:physlab_test_runner>;$<TARGET_OBJECTS:physlab_test_support>,\",\">\"],
   \"common\": \"$<TARGET_FILE:physlab_common>\",
+  \"worker_libraries\": [\"$<JOIN:${PHYSLAB_WORKER_LIBRARIES},\",\">\"],
   \"libraries\": [\"$<TARGET_FILE:Boost::iostreams>\", \"$<TARGET_FILE:Boost::filesystem>\", \"-pthread\"]
 }
 ")
@@ -133,8 +175,14 @@ endfunction()
 # Lab 1's framework half, so they link the reference of Lab 1.
 function(physlab_add_framework_tests)
   file(GLOB common_tests CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/tests/common/*.cpp")
+  if(NOT PHYSLAB_REMOTE)  # the wire of remote grading (test_remote.cpp) is built only where it is used
+    list(FILTER common_tests EXCLUDE REGEX "test_remote\\.cpp$")
+  endif()
   add_executable(test_common ${common_tests})
   target_link_libraries(test_common PRIVATE physlab_test_runner physlab_test_support physlab_01_particles_ref)
+  if(PHYSLAB_REMOTE)
+    target_link_libraries(test_common PRIVATE physlab_remote)
+  endif()
   physlab_test_unity(test_common)
   physlab_warnings(test_common)
   catch_discover_tests(test_common TEST_PREFIX "common: " PROPERTIES TIMEOUT 60 LABELS solutions)
@@ -188,8 +236,54 @@ function(physlab_add_units target prefix units)
   endforeach()
 endfunction()
 
+# Grading where no submitted code runs in the process that decides (docs/grading.md, "Where
+# submitted code runs"), for a lab added with REMOTE: tools/remote_gen.py writes, from the lab's
+# stubs, a proxy of each student function and the worker's table. check_NN (check_NN_hidden) is
+# the lab's tests linked with the proxies and no implementation of the lab: the grader runs it
+# as it runs a test executable, and it starts the worker, which the grader links from the
+# submitted objects and the server's (`server` in grading/NN.json), statically, so that its
+# sandbox needs no file but itself. worker_NN is that link with the reference: the checker and
+# worker pair on the reference passes every test (./physlab test checks it).
+function(physlab_add_remote stage framework_objects deps dep_files hidden out)
+  set(generated "${CMAKE_BINARY_DIR}/remote/${stage}")
+  file(GLOB stubs CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/labs/${stage}/*.cpp")
+  add_custom_command(
+      OUTPUT "${generated}_proxy.cpp" "${generated}_server.cpp"
+      COMMAND "${Python3_EXECUTABLE}" "${PHYSLAB_ROOT}/tools/remote_gen.py" "${PHYSLAB_ROOT}/labs/${stage}"
+              "${generated}_proxy.cpp" "${generated}_server.cpp"
+      DEPENDS ${stubs} "${PHYSLAB_ROOT}/tools/remote_gen.py"
+      COMMENT "Proxies and worker table of ${stage}")
+  # The framework of the stage and the reference of earlier ones, without this stage's own
+  # functions: in the checker the proxies stand in for them.
+  add_library(physlab_${stage}_checked STATIC ${framework_objects} "${generated}_proxy.cpp")
+  target_link_libraries(physlab_${stage}_checked PUBLIC physlab_common physlab_remote ${deps})
+  physlab_cxx(physlab_${stage}_checked)
+  add_executable(check_${stage} $<TARGET_OBJECTS:physlab_${stage}_tests>)
+  target_link_libraries(check_${stage} PRIVATE physlab_test_runner physlab_test_support physlab_${stage}_checked)
+  set(hidden_checker "")
+  if(hidden)
+    add_executable(check_${stage}_hidden $<TARGET_OBJECTS:physlab_${stage}_hidden>)
+    target_link_libraries(check_${stage}_hidden PRIVATE physlab_test_runner physlab_test_support
+                          physlab_${stage}_checked)
+    set(hidden_checker "$<TARGET_FILE:check_${stage}_hidden>")
+  endif()
+  add_library(physlab_${stage}_server OBJECT "${generated}_server.cpp")
+  target_link_libraries(physlab_${stage}_server PRIVATE physlab_common physlab_remote)
+  physlab_cxx(physlab_${stage}_server)
+  # Linked as the grader links a submission's worker: archives by file, static libraries only.
+  add_executable(worker_${stage} $<TARGET_OBJECTS:physlab_${stage}_server> $<TARGET_OBJECTS:physlab_remote>)
+  add_dependencies(worker_${stage} physlab_${stage}_ref physlab_common)
+  target_link_libraries(worker_${stage} PRIVATE -static -Wl,--start-group $<TARGET_FILE:physlab_${stage}_ref>
+                        ${dep_files} $<TARGET_FILE:physlab_common> -Wl,--end-group ${PHYSLAB_WORKER_LIBRARIES})
+  set(${out} "
+  \"checker\": \"$<TARGET_FILE:check_${stage}>\",
+  \"checker_hidden\": \"${hidden_checker}\",
+  \"server\": [\"$<JOIN:$<TARGET_OBJECTS:physlab_${stage}_server>;$<TARGET_OBJECTS:physlab_remote>,\",\">\"],
+  \"reference_worker\": \"$<TARGET_FILE:worker_${stage}>\"," PARENT_SCOPE)
+endfunction()
+
 function(physlab_add_lab stage)
-  cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "REMOTE" "" "DEPENDS" ${ARGN})
   # Earlier stages this one links, with their own dependencies (the grader links them whole).
   set(closure "")
   foreach(dep IN LISTS ARG_DEPENDS)
@@ -298,8 +392,12 @@ function(physlab_add_lab stage)
   foreach(dep IN LISTS closure)
     list(APPEND dep_files $<TARGET_FILE:physlab_${dep}_ref>)
   endforeach()
+  set(remote_json "")
+  if(ARG_REMOTE AND PHYSLAB_HAVE_SOLUTIONS AND PHYSLAB_REMOTE)
+    physlab_add_remote(${stage} "${framework_objects}" "${deps}" "${dep_files}" "${hidden}" remote_json)
+  endif()
   file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/grading/${stage}.json" CONTENT "{
-  \"stage\": \"${stage}\",
+  \"stage\": \"${stage}\",${remote_json}
   \"tests\": [\"$<JOIN:$<TARGET_OBJECTS:physlab_${stage}_tests>,\",\">\"],
   \"hidden\": [$<$<BOOL:${hidden}>:\"$<JOIN:${hidden_objects},\",\">\">],
   \"framework\": [$<$<BOOL:${framework}>:\"$<JOIN:${framework_objects},\",\">\">],

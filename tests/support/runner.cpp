@@ -257,7 +257,8 @@ class VerdictListener : public Catch::TestEventListenerBase {
 };
 
 // How the graded child ends; the grader passes a test only on exit status 0.
-enum Outcome : int { kPassed = 0, kFailed = 1, kNothingAsserted = 3, kOtherTests = 4 };
+// kNotGraded: a remote test whose worker could not be started (tests/support/remote/remote.cpp).
+enum Outcome : int { kPassed = 0, kFailed = 1, kNothingAsserted = 3, kOtherTests = 4, kNotGraded = 5 };
 
 Outcome outcome() {
   if (tally.cases != 1 || hex(tally.name) != channel.expected) return kOtherTests;

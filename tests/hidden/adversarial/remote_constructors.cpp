@@ -1,7 +1,6 @@
 // adversarial: code before main at every priority (.preinit_array, constructors 101 and 65535, init_priority, a static object) and after it (a destructor, atexit), each forging a reply and ending the worker with status 0
 // mode: append
 // file: labs/06_resting_contact/lcp.cpp
-// quick
 #include <cstdlib>
 #include <cstring>
 #include <unistd.h>
