@@ -85,6 +85,14 @@ class Call {
   void back(T& value) {
     get(*reader_, value);
   }
+  /// A writable view (Eigen::Ref): its entries come back, at the size they went.
+  template <class View>
+  void backInto(View&& view) {
+    Eigen::VectorXd value;
+    get(*reader_, value);
+    if (value.size() != view.size()) throw WireError("a vector came back resized");
+    view = value;
+  }
   template <class T>
   void backPointer(T* value) {
     bool present = false;

@@ -29,6 +29,11 @@
 
 namespace physlab::remote {
 
+/// Access<0> lists the members of classes that are not aggregates (state.hpp); Access<1> is a
+/// worker's table, which calls their student member functions. A framework class befriends both.
+template <int>
+struct Access;
+
 /// The most members an aggregate that crosses may have (visitFields() spells out each count).
 inline constexpr std::size_t kMaxFields = 24;
 
@@ -42,8 +47,10 @@ class WireError : public std::runtime_error {
 class Writer {
  public:
   void bytes(const void* data, std::size_t size) {
-    const auto* p = static_cast<const char*>(data);
-    buffer_.insert(buffer_.end(), p, p + size);
+    if (size == 0) return;
+    const std::size_t at = buffer_.size();
+    buffer_.resize(at + size);
+    std::memcpy(buffer_.data() + at, data, size);
   }
   std::vector<char>& buffer() { return buffer_; }
 
