@@ -62,6 +62,61 @@ TEST_CASE("curl noise: the smooth ramp at fixed points: 0 at 0, odd, clamped to 
   CHECK_THROWS_AS(smoothRamp(std::numeric_limits<double>::quiet_NaN()), InvalidInput);
 }
 
+TEST_CASE("curl noise: the ramp is of d / L: widths below and above 1 reach +-1 at d = +-L exactly, bend the flow inside", "[lab01][pts=1][sec=7]") {
+  // A constant noise psi_0 = a sin(pi/2) = 1/2 (kappa = 0) around the disc |p| <= 1/2: then
+  // psi = ramp(d / L) / 2, and on the x axis d = x - 1/2 exactly. Binary fractions throughout:
+  // s = d / L, the ramp's clamp and its value at s = +-1/2 (203/256) are exact.
+  const double a = 0.5, R = 0.5;
+  for (const double L : {0.375, 2.5}) {
+    const CurlNoise field({{a, Eigen::Vector2d::Zero(), M_PI / 2.0}}, Vec3::Zero(), R, L, 1e-4);
+    REQUIRE(field.noise(Vec3::Zero()) == a);
+    CAPTURE(L);
+    const auto psiAt = [&](double d) { return streamFunction(field, Vec3(R + d, 0.0, 0.3)); };
+    CHECK(psiAt(0.0) == 0.0);                     // on the circle
+    CHECK(psiAt(L) == a);                         // s = 1: the end of the band, included
+    CHECK(psiAt(2.0 * L) == a);                   // beyond it, the noise itself
+    // s = 1/2 and s = 3/4 inside the band: the quintic of s, not of d. Horner against the
+    // expanded form: a few ulps.
+    CHECK(psiAt(0.5 * L) == Approx(a * 203.0 / 256.0).epsilon(1e-15));
+    const double s = 0.75, quintic = 15.0 / 8.0 * s - 10.0 / 8.0 * s * s * s + 3.0 / 8.0 * std::pow(s, 5);
+    CHECK(psiAt(0.75 * L) == Approx(a * quintic).epsilon(1e-15));
+    if (L < R) {
+      CHECK(psiAt(-L) == -a);                     // s = -1 inside the disc: clamped to -1
+      CHECK(psiAt(-0.5 * L) == Approx(-a * 203.0 / 256.0).epsilon(1e-15));  // odd: a few ulps
+    } else {
+      // The disc's centre is d = -R = -L / 5 deep: s = -1/5, inside the band
+      const double c = -R / L, at_centre = 15.0 / 8.0 * c - 10.0 / 8.0 * c * c * c + 3.0 / 8.0 * std::pow(c, 5);
+      CHECK(streamFunction(field, Vec3::Zero()) == Approx(a * at_centre).epsilon(1e-14));  // d and s rounded once each
+    }
+    // On the circle the flow runs along it at |v| = a ramp'(0) / L = 15 a / (8 L): 2.5 m/s for
+    // L = 0.375, 0.375 m/s for L = 2.5. Central differences with e = 1e-4 err by e^2 / 6 times
+    // psi's third derivative along x, a 7.5 / L^3 = 71 at most: 1.2e-7, relative 5e-8.
+    const Vec3 v = curlNoiseVelocity(field, Vec3(R, 0.0, 0.0));
+    CHECK(v.y() == Approx(-15.0 * a / (8.0 * L)).epsilon(1e-6));
+    CHECK(std::abs(v.x()) <= 1e-12);  // psi is even in y here: the difference along y cancels but for rounding
+  }
+  // Seeded: a random width in [0.2, 5] (never 1 within 10 %), a random noise, points at seeded
+  // s = d / L in [-min(1, R / L), 1.5], their psi the ramp of s times the field's own noise
+  double L = uniform(0.2, 5.0);
+  if (std::abs(L - 1.0) < 0.1) L += 0.25;
+  std::vector<NoiseWave> waves;
+  for (int k = 0; k < 3; ++k) {
+    const double angle = uniform(0.0, 2.0 * M_PI), size = uniform(1.0, 4.0);
+    waves.push_back({uniform(0.05, 0.2), size * Eigen::Vector2d(std::cos(angle), std::sin(angle)), uniform(0.0, 2.0 * M_PI)});
+  }
+  const CurlNoise field(waves, Vec3(uniform(-0.2, 0.2), uniform(-0.2, 0.2), 0.0), R, L, 1e-4);
+  CAPTURE(L);
+  for (int k = 0; k < 40; ++k) {
+    const double angle = uniform(0.0, 2.0 * M_PI), s = uniform(-std::min(1.0, R / L), 1.5);
+    const Vec3 p = field.centre + (R + s * L) * Vec3(std::cos(angle), std::sin(angle), 0.0);
+    const double t = std::max(-1.0, std::min(1.0, field.distance(p) / L));
+    const double expected = (15.0 / 8.0 * t - 10.0 / 8.0 * t * t * t + 3.0 / 8.0 * std::pow(t, 5)) * field.noise(p);
+    CAPTURE(s);
+    // The same product with the quintic in another order: a few ulps of |psi| <= sum |a_k| < 0.6.
+    CHECK(streamFunction(field, p) == Approx(expected).margin(4e-15));
+  }
+}
+
 TEST_CASE("curl noise: a velocity computed by hand for one sinusoid far from the solid", "[lab01][pts=1][sec=7]") {
   // psi_0 = a sin(kappa . p + phi); farther than L from the disc the ramp is 1, so
   // v = (dpsi/dy, -dpsi/dx) = a cos(kappa . p + phi) (kappa_y, -kappa_x).

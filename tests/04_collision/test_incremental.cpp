@@ -298,6 +298,68 @@ TEST_CASE("incremental: tree invariants, and a logarithmic height for sorted ins
   CHECK_STRUCTURE(line);
 }
 
+TEST_CASE("incremental: the tree rotates where its subtrees' heights differ by more than one, not at one (hand-built, both sides)", "[lab04][pts=1][sec=10]") {
+  // Unit cubes along x, inserted one by one into a bare DynamicAabbTree; each pairs with its
+  // nearest box (the surface-area costs, worked out below, are far apart: no tie). The ids under
+  // each child of the root give the shape.
+  const auto idsUnder = [](const DynamicAabbTree& tree, int node) {
+    std::vector<int> ids, stack = {node};
+    while (!stack.empty()) {
+      const Node& k = tree.nodes()[stack.back()];
+      stack.pop_back();
+      if (k.isLeaf()) {
+        ids.push_back(k.id);
+      } else {
+        stack.push_back(k.child1);
+        stack.push_back(k.child2);
+      }
+    }
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  };
+  const auto rootSplit = [&](const DynamicAabbTree& tree) {
+    const Node& root = tree.nodes()[tree.root()];
+    std::vector<std::vector<int>> halves = {idsUnder(tree, root.child1), idsUnder(tree, root.child2)};
+    std::sort(halves.begin(), halves.end());
+    return halves;
+  };
+  using Split = std::vector<std::vector<int>>;
+  // Growing to the right (the new leaf is always a second child): A = [0,1] (id 0), B = [2,3]
+  // (id 1), C = [4,5] (id 2), D = [6,7] (id 3), all x [0,1]^2.
+  {
+    DynamicAabbTree tree;
+    tree.insertLeaf(cuboid(0, 0, 0, 1, 1, 1), 0);
+    tree.insertLeaf(cuboid(2, 0, 0, 3, 1, 1), 1);
+    // C: the root costs 2 A([0,5]) = 44, A 16 + 22 = 38, B 16 + 14 = 30: C pairs with B. The root's
+    // subtrees are then A (height 0) and (B, C) (height 1): differing by one, no rotation.
+    tree.insertLeaf(cuboid(4, 0, 0, 5, 1, 1), 2);
+    CHECK(rootSplit(tree) == Split{{0}, {1, 2}});
+    CHECK(tree.height() == 3);
+    // D pairs with C (the root 60, A 46, (B, C) 24; then (B, C) 44, B 38, C 30): the root's subtrees
+    // are A (0) and (B, (C, D)) (2), differing by two: (B, (C, D)) rotates up, keeping (C, D), and
+    // the old root takes B: ((A, B), (C, D)).
+    tree.insertLeaf(cuboid(6, 0, 0, 7, 1, 1), 3);
+    CHECK(rootSplit(tree) == Split{{0, 1}, {2, 3}});
+    CHECK(tree.height() == 3);
+  }
+  // Growing to the left (the taller subtree is the root's first child): A = [0,1] (id 0),
+  // B = [10,11] (id 1), C = [-2,-1] (id 2), D = [-4,-3] (id 3).
+  {
+    DynamicAabbTree tree;
+    tree.insertLeaf(cuboid(0, 0, 0, 1, 1, 1), 0);
+    tree.insertLeaf(cuboid(10, 0, 0, 11, 1, 1), 1);
+    // C: the root 108, A 16 + 14 = 30, B 16 + 54 = 70: C pairs with A. Subtrees (A, C) (1) and B (0).
+    tree.insertLeaf(cuboid(-2, 0, 0, -1, 1, 1), 2);
+    CHECK(rootSplit(tree) == Split{{0, 2}, {1}});
+    CHECK(tree.height() == 3);
+    // D pairs with C (the root 124, (A, C) 24, B 78; then (A, C) 44, A 38, C 30): subtrees
+    // (A, (C, D)) (2) and B (0): the first rotates up, and the old root takes A: ((A, B), (C, D)).
+    tree.insertLeaf(cuboid(-4, 0, 0, -3, 1, 1), 3);
+    CHECK(rootSplit(tree) == Split{{0, 1}, {2, 3}});
+    CHECK(tree.height() == 3);
+  }
+}
+
 TEST_CASE("incremental: the sibling is the one of least surface-area cost (hand-computed)", "[lab04][pts=1][sec=10]") {
   // Margin 0: fat = tight. Leaves A = [0,1]^3 (id 0) and B = [4,5]x[0,1]^2 (id 1) under a root
   // of area 2 (5 + 1 + 5) = 22.

@@ -108,6 +108,76 @@ TEST_CASE("rigid impulse: a fixed body takes no momentum and the other bounces w
   CHECK(vRel(s) == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
 }
 
+TEST_CASE("rigid impulse: a body pinned at its centre (inverse mass 0, inverse inertia not) is not fixed: it turns", "[lab05][pts=2][sec=2][sec=3]") {
+  // Fixed means both inverses zero (world.hpp): a wheel on an axle through its centre has
+  // m^-1 = 0 but turns. By hand: I^-1 = 2 1, spinning at omega = (0, 3, 0), touching the fixed
+  // ground at p = (1, 0, 0) with n = z. r x n = (0, -1, 0), so K = n . (I^-1 (r x n)) x r = 2;
+  // the point moves at omega x r = (0, 0, -3): v_rel = -3, j = -(1 + 1/2)(-3) / 2 = 2.25, and
+  // J = 2.25 n turns it by I^-1 (r x J) = (0, -4.5, 0) to omega = (0, -1.5, 0): the point leaves
+  // at +1.5 = -epsilon v_rel. Small integers and halves: every step is exact.
+  ContactBody wheel, ground;
+  wheel.I_inv_world = 2.0 * Mat3::Identity();
+  wheel.omega = Vec3(0.0, 3.0, 0.0);
+  const Vec3 p(1.0, 0.0, 0.0), n = Vec3::UnitZ();
+  CHECK(inverseEffectiveMass(wheel, ground, p, n) == 2.0);
+  CHECK(inverseEffectiveMass(ground, wheel, p, -n) == 2.0);  // as B, normal from the wheel to the ground
+  // Along its lever arm a pinned body cannot give at all: K = 0 exactly (no mass term, r x d = 0)
+  CHECK(inverseEffectiveMass(wheel, ground, p, Vec3::UnitX()) == 0.0);
+  CHECK(impulseMagnitude(wheel, ground, p, n, 0.5) == 2.25);
+  CHECK(impulseMagnitude(ground, wheel, p, -n, 0.5) == 2.25);
+  for (const bool wheel_is_a : {true, false}) {
+    CAPTURE(wheel_is_a);
+    ContactBody w = wheel, g = ground;
+    if (wheel_is_a) {
+      applyImpulse(w, g, p, 2.25 * n);
+    } else {
+      applyImpulse(g, w, p, -2.25 * n);  // -J on B: +2.25 n on the wheel again
+    }
+    CHECK(w.omega == Vec3(0.0, -1.5, 0.0));
+    CHECK(w.v == Vec3::Zero());  // pinned: its centre stays
+    CHECK(g.v == Vec3::Zero());
+    CHECK(g.omega == Vec3::Zero());
+  }
+  // The other end of the rule: a body that translates but cannot turn (I^-1 = 0, m^-1 = 1/2) is not
+  // fixed either: K = 1/2 along any direction, and J = 1 moves it by 1/2 along J, without a turn.
+  ContactBody slider;
+  slider.inv_mass = 0.5;
+  CHECK(inverseEffectiveMass(slider, ground, p, n) == 0.5);
+  applyImpulse(slider, ground, p, n);
+  CHECK(slider.v == Vec3(0.0, 0.0, 0.5));
+  CHECK(slider.omega == Vec3::Zero());
+  // Seeded: a pinned body with a random inertia and spin against a random moving body (as A and
+  // as B): K is the formula's, the impulse leaves v_rel = -epsilon v_rel-, the pinned centre stays.
+  RandomPair s = randomPair();
+  s.A.v = Vec3::Zero();
+  s.A.inv_mass = 0.0;
+  if (vRel(s) > 0.0) {
+    s.A.omega = -s.A.omega;
+    s.B.v = -s.B.v;
+    s.B.omega = -s.B.omega;
+  }
+  scaleToApproach(s, -uniform(0.3, 3.0));  // well clear of a graze
+  const double epsilon = uniform(0.0, 1.0), before = vRel(s);
+  INFO("v_rel- " << before << ", epsilon " << epsilon);
+  // The same formula evaluated in another order: round-off only.
+  CHECK(inverseEffectiveMass(s.A, s.B, s.p, s.n) == Approx(oracleK(s.A, s.B, s.p, s.n)).epsilon(1e-12));
+  CHECK(inverseEffectiveMass(s.B, s.A, s.p, -s.n) == Approx(oracleK(s.A, s.B, s.p, s.n)).epsilon(1e-12));
+  for (const bool pinned_is_a : {true, false}) {
+    CAPTURE(pinned_is_a);
+    RandomPair t = s;
+    const double j = pinned_is_a ? impulseMagnitude(t.A, t.B, t.p, t.n, epsilon) : impulseMagnitude(t.B, t.A, t.p, -t.n, epsilon);
+    if (pinned_is_a) {
+      applyImpulse(t.A, t.B, t.p, j * t.n);
+    } else {
+      applyImpulse(t.B, t.A, t.p, -j * t.n);
+    }
+    CHECK(t.A.v == Vec3::Zero());
+    // v_rel is linear in j: round-off relative to the speeds involved (~10 m/s).
+    CHECK(vRel(t) == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
+    CHECK((t.A.omega - s.A.omega).norm() > 0.0);  // it turned
+  }
+}
+
 TEST_CASE("friction: below mu j the contact sticks, above it slides with |j_t| = mu j", "[lab05][pts=1][sec=4]") {
   // A sphere on the fixed ground: touching point below its centre
   const double m = uniform(0.5, 5.0), r = uniform(0.05, 0.5);
@@ -163,6 +233,52 @@ TEST_CASE("friction: the impulse opposes the tangential slip, stopping it along 
   const double j_max = j_stop * uniform(0.1, 0.8);
   const Vec3 J_slide = frictionImpulse(s.A, s.B, s.p, s.n, j_max);
   CHECK((J_slide + j_max * t).norm() <= 1e-10 * j_max);  // round-off only
+}
+
+TEST_CASE("friction: it sticks up to |v_t| = K_t j_max and slides beyond, for K_t j_max below and above 1 m/s", "[lab05][pts=1][sec=4]") {
+  // The rule compares the stopping impulse |v_t| / K_t with j_max, that is |v_t| with K_t j_max
+  // (a speed with a speed): squaring one side moves the threshold to sqrt(K_t j_max), wrong on
+  // both sides of 1 m/s. By hand: a point mass (m^-1 = 1/2, no inertia, p at its centre, so
+  // K_t = 1/2) sliding along x on the fixed ground; quarters and halves: exact.
+  ContactBody ground, puck;
+  puck.inv_mass = 0.5;
+  const Vec3 p = Vec3::Zero(), n = Vec3::UnitZ();
+  const auto impulseAt = [&](double speed, double j_max) {
+    ContactBody A = puck;
+    A.v = Vec3(speed, 0.0, -1.0);  // approaching; the normal part plays no role
+    return frictionImpulse(A, ground, p, n, j_max);
+  };
+  // K_t j_max = 1/4 m/s (j_max = 1/2): sticking up to 0.25 m/s, the threshold itself included
+  CHECK(impulseAt(0.125, 0.5) == Vec3(-0.25, 0.0, 0.0));
+  CHECK(impulseAt(0.25, 0.5) == Vec3(-0.5, 0.0, 0.0));
+  CHECK(impulseAt(0.375, 0.5) == Vec3(-0.5, 0.0, 0.0));  // sliding, though 0.375^2 < 1/4
+  CHECK(impulseAt(0.4375, 0.5) == Vec3(-0.5, 0.0, 0.0));
+  CHECK(impulseAt(2.0, 0.5) == Vec3(-0.5, 0.0, 0.0));
+  // K_t j_max = 4 m/s (j_max = 8): sticking up to 4 m/s, though 3^2 > 4
+  CHECK(impulseAt(2.5, 8.0) == Vec3(-5.0, 0.0, 0.0));
+  CHECK(impulseAt(3.75, 8.0) == Vec3(-7.5, 0.0, 0.0));
+  CHECK(impulseAt(4.0, 8.0) == Vec3(-8.0, 0.0, 0.0));
+  CHECK(impulseAt(4.25, 8.0) == Vec3(-8.0, 0.0, 0.0));
+  // Seeded: a random pair of moving bodies, its velocities scaled to a slow slip (0.05 to 0.5 m/s)
+  // with j_max 1 to 10 % below the stopping impulse, then to a fast one (2 to 10 m/s) with j_max
+  // 1 to 10 % above it: sliding at j_max, then sticking at j_stop.
+  for (const bool fast : {false, true}) {
+    RandomPair s = approachingPair();
+    const Vec3 v0 = oracleRelativeVelocity(s.A, s.B, s.p), v0_t = v0 - v0.dot(s.n) * s.n;
+    const double speed = fast ? uniform(2.0, 10.0) : uniform(0.05, 0.5), scale = speed / v0_t.norm();
+    s.A.v *= scale;
+    s.A.omega *= scale;
+    s.B.v *= scale;
+    s.B.omega *= scale;
+    const Vec3 v = oracleRelativeVelocity(s.A, s.B, s.p), v_t = v - v.dot(s.n) * s.n;
+    const Vec3 t = v_t.normalized();
+    const double j_stop = v_t.norm() / oracleK(s.A, s.B, s.p, t);
+    const double j_max = j_stop * (fast ? uniform(1.01, 1.1) : uniform(0.9, 0.99));
+    INFO("|v_t| = " << v_t.norm() << " m/s, j_stop = " << j_stop << ", j_max = " << j_max);
+    const Vec3 J = frictionImpulse(s.A, s.B, s.p, s.n, j_max);
+    // The same formula evaluated in another order: round-off relative to the impulse.
+    CHECK((J + (fast ? j_stop : j_max) * t).norm() <= 1e-10 * j_stop);
+  }
 }
 
 TEST_CASE("penalty: the force is max(0, k depth - d v_rel) along n, never pulling", "[lab05][pts=1][sec=7]") {

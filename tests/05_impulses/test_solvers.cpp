@@ -690,6 +690,135 @@ TEST_CASE("sequential and simultaneous impulses: a fixed body's own velocity cou
   }
 }
 
+TEST_CASE("sequential and simultaneous impulses: a body pinned at its centre (inverse mass 0, inverse inertia not) turns, as A or as B", "[lab05][pts=1][sec=5][sec=6]") {
+  // Fixed means both inverses zero (world.hpp); a wheel on an axle through its centre has m^-1 = 0
+  // but turns, and the solvers must give it its impulse. By hand: I^-1 = 2 1, spinning at
+  // omega = (0, 3, 0), its point p = (1, 0, 0) hitting the fixed ground at 3 m/s (n = z from the
+  // ground to the wheel); K = 2, epsilon = 1/2: j = 1.5 x 3 / 2 = 2.25 and omega = (0, -1.5, 0),
+  // the point leaving at 1.5 m/s; exact in binary. Seeded: a pinned body of random inertia and
+  // spin hit by a moving ball at a random point, frictionless.
+  ContactBody wheel;
+  wheel.I_inv_world = 2.0 * Mat3::Identity();
+  wheel.omega = Vec3(0.0, 3.0, 0.0);
+  for (const bool wheel_is_a : {true, false}) {
+    for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
+      std::vector<ContactBody> bodies = {wheel, ContactBody{}};  // the wheel, the ground
+      Contact c;
+      c.a = wheel_is_a ? 0 : 1;
+      c.b = wheel_is_a ? 1 : 0;
+      c.p = Vec3(1.0, 0.0, 0.0);
+      c.n = wheel_is_a ? Vec3(Vec3::UnitZ()) : Vec3(-Vec3::UnitZ());
+      c.epsilon = 0.5;
+      c.v_rel_minus = -3.0;
+      c.kind = ContactKind::Colliding;
+      std::vector<Contact> contacts = {c};
+      Settings settings;
+      settings.method = method;
+      INFO(responseMethodName(method) << (wheel_is_a ? ", wheel as A" : ", wheel as B"));
+      const int sweeps = method == ResponseMethod::Sequential ? solveSequential(bodies, contacts, settings)
+                                                              : solveSimultaneous(bodies, contacts, settings);
+      CHECK(sweeps == 2);  // the answer, then a quiet sweep
+      CHECK(contacts[0].j == 2.25);
+      CHECK(bodies[0].omega == Vec3(0.0, -1.5, 0.0));
+      CHECK(bodies[0].v == Vec3::Zero());  // pinned: the centre stays
+      CHECK(bodies[1].v == Vec3::Zero());
+      CHECK(bodies[1].omega == Vec3::Zero());
+    }
+  }
+  ContactBody pinned;
+  pinned.x = randomVec3(0.5);
+  pinned.omega = randomVec3(3.0);
+  pinned.I_inv_world = randomInertiaTensor().inverse();
+  const double m = uniform(0.5, 5.0), r = uniform(0.1, 0.5);
+  const Vec3 n = randomVec3(1.0).normalized();
+  const Vec3 p = pinned.x + uniform(0.3, 1.0) * randomVec3(1.0).cross(n).normalized();  // off the centre, across n
+  ContactBody ball;
+  ball.x = p - r * n;  // below the point along n: n points from the ball (B) to the pinned body (A)
+  ball.inv_mass = 1.0 / m;
+  ball.I_inv_world = Mat3::Identity() / (0.4 * m * r * r);
+  ball.omega = randomVec3(2.0);
+  ball.v = randomVec3(1.0);
+  const double approach = n.dot(oracleRelativeVelocity(pinned, ball, p));
+  ball.v += (approach + uniform(0.5, 3.0)) * n;  // the points now approach at 0.5 to 3 m/s
+  const double before = n.dot(oracleRelativeVelocity(pinned, ball, p)), epsilon = uniform(0.0, 1.0);
+  for (const bool pinned_is_a : {true, false}) {
+    for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
+      std::vector<ContactBody> bodies = {pinned, ball};
+      Contact c;
+      c.a = pinned_is_a ? 0 : 1;
+      c.b = pinned_is_a ? 1 : 0;
+      c.p = p;
+      c.n = pinned_is_a ? n : Vec3(-n);
+      c.epsilon = epsilon;
+      c.v_rel_minus = before;
+      c.kind = ContactKind::Colliding;
+      std::vector<Contact> contacts = {c};
+      Settings settings;
+      settings.method = method;
+      INFO(responseMethodName(method) << (pinned_is_a ? ", pinned body as A" : ", pinned body as B") << ", v_rel- " << before
+                                      << ", epsilon " << epsilon);
+      if (method == ResponseMethod::Sequential) {
+        solveSequential(bodies, contacts, settings);
+      } else {
+        solveSimultaneous(bodies, contacts, settings);
+      }
+      CHECK(bodies[0].v == Vec3::Zero());
+      CHECK((bodies[0].omega - pinned.omega).norm() > 0.0);  // it turned
+      // One frictionless point: the first sweep's correction is the answer, the second round-off.
+      // Round-off relative to the impulse and to speeds of ~5 m/s.
+      const double j = -(1.0 + epsilon) * before / oracleK(pinned, ball, p, n);
+      CHECK(contacts[0].j == Approx(j).epsilon(1e-10));
+      CHECK(n.dot(oracleRelativeVelocity(bodies[0], bodies[1], p)) == Approx(-epsilon * before).margin(1e-10 * (1.0 + std::abs(before))));
+    }
+  }
+}
+
+TEST_CASE("sequential and simultaneous impulses: a sweep that only stops a slip is quiet when the slip is at most the tolerance, in m/s either side of 1", "[lab05][pts=1][sec=5][sec=6]") {
+  // A point mass (m^-1 = 1/2, no inertia: K = 1/2 along any direction) resting on the ground with
+  // its weight's impulse j = 1 warm-started, so that its normal velocity -1/2 becomes exactly 0,
+  // and sliding at s along x with mu = 10 (the cone never cuts). The first sweep changes no normal
+  // velocity and stops the slip with j_t = -2 s: the sweep changed a velocity by s. It is quiet
+  // (1 sweep) when s <= tolerance, else a second, quiet, sweep follows (2). Comparing s^2 instead
+  // moves the threshold to sqrt(tolerance): wrong between the two, below 1 m/s and above.
+  // Powers of two and small integers: every velocity is exact.
+  struct Case {
+    double tolerance, s;
+    int sweeps;
+  };
+  for (const Case& k : {Case{1.0 / 1024, 1.0 / 64, 2},   // s^2 = 1/4096 would be below the tolerance
+                        Case{1.0 / 1024, 1.0 / 1024, 1},  // exactly the tolerance: quiet
+                        Case{1.0 / 1024, 0.5, 2},
+                        Case{4.0, 3.0, 1},                // s^2 = 9 would be above it
+                        Case{4.0, 4.0, 1},
+                        Case{4.0, 4.5, 2}}) {
+    for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
+      ContactBody puck;
+      puck.inv_mass = 0.5;
+      puck.v = Vec3(k.s, 0.0, -0.5);
+      std::vector<ContactBody> bodies = {puck, ContactBody{}};
+      Contact c;
+      c.p = Vec3::Zero();
+      c.mu = 10.0;
+      c.j = 1.0;
+      c.v_rel_minus = -0.5;
+      c.kind = ContactKind::Colliding;
+      c.a = 0;
+      c.b = 1;
+      std::vector<Contact> contacts = {c};
+      Settings settings;
+      settings.method = method;
+      settings.tolerance = k.tolerance;
+      INFO(responseMethodName(method) << ", tolerance " << k.tolerance << " m/s, slip " << k.s << " m/s");
+      const int sweeps = method == ResponseMethod::Sequential ? solveSequential(bodies, contacts, settings)
+                                                              : solveSimultaneous(bodies, contacts, settings);
+      CHECK(sweeps == k.sweeps);
+      CHECK(contacts[0].j == 1.0);
+      CHECK(contacts[0].j_t == Vec3(-2.0 * k.s, 0.0, 0.0));
+      CHECK(bodies[0].v == Vec3::Zero());
+    }
+  }
+}
+
 TEST_CASE("sequential and simultaneous impulses: the stopping rule measures velocity changes, friction included", "[lab05][pts=2][sec=5][sec=6]") {
   for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
     INFO(responseMethodName(method));

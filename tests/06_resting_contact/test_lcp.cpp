@@ -330,3 +330,41 @@ TEST_CASE("pivoting and lemke: iterations count every pivot, counted by hand", "
   CHECK((tie.f - (VecX(2) << 1.0, 0.0).finished()).cwiseAbs().maxCoeff() <= 4e-16);  // halves and ones
   CHECK(tie.w.cwiseAbs().maxCoeff() <= 4e-16);
 }
+
+TEST_CASE("lemke: ties that the ratio and the first column of B^-1 leave are broken by the next column (hand-traced degenerate LCPs)", "[lab06][pts=1][sec=4]") {
+  // In both LCPs z0 enters at row 0 (the most negative b) and leaves rows 1 and 2 with equal
+  // values, so the entering f0 finds them tied in the ratio; their rows of B^-1 = I - e e_0^T,
+  // (-1, 1, 0) and (-1, 0, 1) over equal entries of the column, tie in the first column too: only
+  // the second tells them apart (0 < 1: row 2, w2 leaves), and it decides the run. Small
+  // integers, halves and thirds: every tie is exact in floating point too.
+  // A = [[1, -1, 1], [-2, 0, 0], [-2, 1, -1]] (not PSD), b = (-1, 1, 1): z0 = 1, w1 = w2 = 2; f0
+  // enters with column (1, 3, 3): ratios 1, 2/3, 2/3; first column -1/3, -1/3; second 1/3, 0:
+  // w2 leaves. f2 enters, z0 and f0 tie at ratio 1 and z0 leaves: 3 pivots, f = (0, 0, 1),
+  // w = (0, 1, 0). Letting w1 leave instead puts z0, f0 and w2 (= 0) in the basis, and f1,
+  // entering next, has no positive entry: ray termination on an LCP that has a solution.
+  {
+    MatX A(3, 3);
+    A << 1.0, -1.0, 1.0, -2.0, 0.0, 0.0, -2.0, 1.0, -1.0;
+    const VecX b = (VecX(3) << -1.0, 1.0, 1.0).finished();
+    const LcpSolution s = solveLcpLemke(A, b);
+    CHECK(s.iterations == 3);
+    // Thirds and their multiples, a few operations each: a few ulps
+    CHECK((s.f - (VecX(3) << 0.0, 0.0, 1.0).finished()).cwiseAbs().maxCoeff() <= 1e-15);
+    CHECK((s.w - (VecX(3) << 0.0, 1.0, 0.0).finished()).cwiseAbs().maxCoeff() <= 1e-15);
+  }
+  // A = [[1, 0, 0], [0, 2, 1], [0, 3, 2]] (a P-matrix: one solution), b = (-2, -1, -1): z0 = 2,
+  // w1 = w2 = 1; f0 enters with column (1, 1, 1): ratios 2, 1, 1; first column -1, -1; second
+  // 1, 0: w2 leaves (f0 = 1, w1 = 0). Then f2 enters and the degenerate w1 leaves (ratio 0), f1
+  // enters and f2 leaves (ratio 0), w2 enters and z0 leaves: 5 pivots, f = (2, 1/2, 0),
+  // w = (0, 0, 1/2). Letting w1 leave at the tie reaches the same f in 3.
+  {
+    MatX A(3, 3);
+    A << 1.0, 0.0, 0.0, 0.0, 2.0, 1.0, 0.0, 3.0, 2.0;
+    const VecX b = (VecX(3) << -2.0, -1.0, -1.0).finished();
+    const LcpSolution s = solveLcpLemke(A, b);
+    CHECK(s.iterations == 5);
+    // Halves and small integers: a few ulps
+    CHECK((s.f - (VecX(3) << 2.0, 0.5, 0.0).finished()).cwiseAbs().maxCoeff() <= 1e-15);
+    CHECK((s.w - (VecX(3) << 0.0, 0.0, 0.5).finished()).cwiseAbs().maxCoeff() <= 1e-15);
+  }
+}
