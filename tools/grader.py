@@ -699,16 +699,17 @@ class Deadline:
 
 
 def run_one(sandbox: Sandbox, program: Program, case: TestCase, seed: int, timeout: float,
-            deadline: Deadline, scratch: Path, homes: Path) -> TestCase:
+            deadline: Deadline, scratch: Path, homes: Path, env=None) -> TestCase:
     """Runs one test case in homes/home-<slot>, its output and verdict files in the private
-    `scratch`; its status comes from the harness's authenticated verdict."""
+    `scratch`, with `env` added to its environment; its status comes from the harness's
+    authenticated verdict."""
     budget = min(timeout, deadline.left())
     if budget <= 1.0:
         case.status, case.output = "not run", "not run: the grading deadline was reached"
         return case
     slot = sandbox.acquire()
     try:
-        run_sandboxed_test(sandbox, slot, program, case, seed, budget, scratch, homes)
+        run_sandboxed_test(sandbox, slot, program, case, seed, budget, scratch, homes, env)
     except Exception as error:  # an error of the grader's own costs this test, not the grade
         case.status, case.output = "crashed", f"the grader could not run this test: {error}"
     finally:
@@ -717,7 +718,7 @@ def run_one(sandbox: Sandbox, program: Program, case: TestCase, seed: int, timeo
 
 
 def run_sandboxed_test(sandbox: Sandbox, slot: int, program: Program, case: TestCase, seed: int,
-                       budget: float, scratch: Path, homes: Path) -> None:
+                       budget: float, scratch: Path, homes: Path, env=None) -> None:
     key = secrets.token_hex(32)
     work = Path(tempfile.mkdtemp(dir=scratch, prefix="test-"))
     home = homes / f"home-{slot}"
@@ -728,13 +729,13 @@ def run_sandboxed_test(sandbox: Sandbox, slot: int, program: Program, case: Test
         out_fd = os.open(work / "output", os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
         verdict_fd = os.open(work / "verdict", os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
         cmd = [str(program.exe), escape_spec(case.name), "-r", "xml", "--rng-seed", str(seed)]
-        env = {"PHYSLAB_VERDICT": f"{read_end}:{verdict_fd}:{case.name.encode('utf-8').hex()}"}
+        variables = {**(env or {}), "PHYSLAB_VERDICT": f"{read_end}:{verdict_fd}:{case.name.encode('utf-8').hex()}"}
         if program.worker is not None:
-            env.update(sandbox.isolation.environment(program.worker))
+            variables.update(sandbox.isolation.environment(program.worker))
         try:
             code, case.seconds = sandbox.run(
                 cmd, slot=slot, cwd=home, timeout=budget, memory=TEST_MEMORY, stdout=out_fd,
-                pass_fds=(read_end, verdict_fd), extra_env=env)
+                pass_fds=(read_end, verdict_fd), extra_env=variables)
         finally:
             for fd in (read_end, out_fd, verdict_fd):
                 os.close(fd)

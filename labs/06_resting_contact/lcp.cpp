@@ -37,9 +37,15 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
   // round-off the direction carries: the clamped contacts' dw, zero in exact arithmetic
   // TODO(student): noise_i = max(pivot_tolerance * sum_j |a_ij| |df_j|, max over clamped k of |dw_k|);
   // TODO(student): only |dw_i| > noise_i counts as a sign.
-  // Find the blocking contact by the ratio test (d first, so that ties end the drive)
-  // TODO(student): d blocks at s = -w_d / dw_d when dw_d > noise_d; i in C at f_i / -df_i when df_i < -pivot_tolerance;
-  // TODO(student): i in NC at w_i / -dw_i when dw_i < -noise_i; the smallest s wins, ties to d.
+  // Find the blocking contact by the ratio test
+  // TODO(student): i in C at f_i / -df_i when df_i < -pivot_tolerance; i in NC at w_i / -dw_i when dw_i < -noise_i;
+  // TODO(student): the smallest s wins.
+  // d blocks, ending the drive, also when the step the others allow leaves w_d within
+  // round-off of zero (a tie, which goes to d): the contact that blocked would join C with
+  // w = 0 where it is degenerate, and d, zero now too, would join C after it; when d's row
+  // depends on C's and the blocking one's (A = B B^T of rank below n), that A_CC is singular
+  // TODO(student): when dw_d > noise_d, d blocks at min(s, -w_d / dw_d) if -w_d / dw_d <= s or w_d + s dw_d is at
+  // TODO(student): least minus the drive's round-off bound (with f + s df in it): ties go to d.
   // Nothing blocks: w_d does not grow with f_d (PSD: the Schur complement of A_CC is zero)
   // TODO(student): throw LcpFailure("... singular pivot ...") rather than step by infinity.
   // Move the blocking contact to its other set, setting the blocked value to zero exactly
@@ -73,7 +79,12 @@ LcpSolution solveLcpLemke(const MatX& A, const VecX& b, const LcpOptions& option
   // TODO(student): eligible rows: entry > n * pivot_tolerance * max(1, largest |entry| of the column); ratio
   // TODO(student): max(0, right-hand side) / entry; none eligible: throw LcpFailure("... ray termination ...").
   // TODO(student): ties: ratios within pivot_tolerance * max(1, smallest ratio) of the smallest.
-  // z0 leaving among the ties ends the method at once
+  // z0 leaving among the ties ends the method at once. z0 ties when the step leaves it within
+  // round-off of zero: z0 and a degenerate dependent contact reach 0 together in exact
+  // arithmetic, and their ratios, quotients of entries that cancelled down to 1e-4, may differ
+  // by more than pivot_tolerance (relative); a w leaving instead strands z0 at 1e-16 on a ray
+  // TODO(student): z0's row leaves when its entry is eligible and its right-hand side minus the smallest ratio
+  // TODO(student): times its entry is at most n * pivot_tolerance * max(1, largest |right-hand side|).
   // Redundant contacts make degenerate rows (basic value 0) whose entry is zero in exact
   // arithmetic and round-off here: the largest entry among the ties is a true pivot
   // TODO(student): second run: the tied row with the largest entry of the entering column.

@@ -191,7 +191,8 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
     // block may bring w_d to zero on the way: a degenerate contact). A w_d within round-off of
     // the terms it sums (b_d and a_dj f_j, each step adding its own) is zero: large opposing
     // forces on nearly dependent contacts leave w_d = -1e-11 where it is exactly 0
-    while (s.w(d) < -options.pivot_tolerance * (scale + static_cast<double>(n) * (A_abs.row(d).dot(s.f.cwiseAbs()) + std::abs(b(d))))) {
+    const auto roundoff = [&](const VecX& f) { return options.pivot_tolerance * (scale + static_cast<double>(n) * (A_abs.row(d).dot(f.cwiseAbs()) + std::abs(b(d)))); };
+    while (s.w(d) < -roundoff(s.f)) {
       if (s.iterations >= limit) {
         throw LcpFailure("solveLcpPivoting: pivot limit " + std::to_string(limit) + " reached while driving contact " +
                          std::to_string(d));
@@ -208,13 +209,9 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
       double carried = 0.0;
       for (Index i : clamped.contacts()) carried = std::max(carried, std::abs(dw(i)));
       dw_noise = dw_noise.cwiseMax(carried);
-      // Find the blocking contact by the ratio test (d first, so that ties end the drive)
+      // Find the blocking contact by the ratio test
       double step = kInfinity;
       Index blocking = -1;
-      if (dw(d) > dw_noise(d)) {
-        step = -s.w(d) / dw(d);
-        blocking = d;
-      }
       for (Index i : clamped.contacts()) {
         if (df(i) < -options.pivot_tolerance && std::max(s.f(i), 0.0) / -df(i) < step) {
           step = std::max(s.f(i), 0.0) / -df(i);
@@ -225,6 +222,17 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
         if (dw(i) < -dw_noise(i) && std::max(s.w(i), 0.0) / -dw(i) < step) {
           step = std::max(s.w(i), 0.0) / -dw(i);
           blocking = i;
+        }
+      }
+      // d blocks, ending the drive, also when the step the others allow leaves w_d within
+      // round-off of zero (a tie, which goes to d): the contact that blocked would join C with
+      // w = 0 where it is degenerate, and d, zero now too, would join C after it; when d's row
+      // depends on C's and the blocking one's (A = B B^T of rank below n), that A_CC is singular
+      if (dw(d) > dw_noise(d)) {
+        const double own = -s.w(d) / dw(d);
+        if (own <= step || s.w(d) + step * dw(d) >= -roundoff(s.f + step * df)) {
+          step = std::min(step, own);
+          blocking = d;
         }
       }
       // Nothing blocks: w_d does not grow with f_d (PSD: the Schur complement of A_CC is zero)
@@ -317,6 +325,8 @@ LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, Ti
     // within round-off below zero counts as the zero it is in exact arithmetic
     const double eligible = options.pivot_tolerance * static_cast<double>(n) * std::max(1.0, T.col(entering).cwiseAbs().maxCoeff());
     const auto ratio = [&](Index i) { return std::max(0.0, T(i, rhs)) / T(i, entering); };
+    // A basic value within round-off of zero (n pivot_tolerance times the largest) is zero
+    const double zero_value = options.pivot_tolerance * static_cast<double>(n) * std::max(1.0, T.col(rhs).cwiseAbs().maxCoeff());
     double best = kInfinity;
     for (Index i = 0; i < n; ++i) {
       if (T(i, entering) > eligible) best = std::min(best, ratio(i));
@@ -331,10 +341,16 @@ LcpSolution lemkeRun(const MatX& A, const VecX& b, const LcpOptions& options, Ti
         candidates.push_back(i);
       }
     }
-    // z0 leaving among the ties ends the method at once
+    // z0 leaving among the ties ends the method at once. z0 ties when the step leaves it within
+    // round-off of zero: z0 and a degenerate dependent contact reach 0 together in exact
+    // arithmetic, and their ratios, quotients of entries that cancelled down to 1e-4, may differ
+    // by more than pivot_tolerance (relative); a w leaving instead strands z0 at 1e-16 on a ray
     row = candidates.front();
-    for (Index i : candidates) {
-      if (basis[static_cast<std::size_t>(i)] == z0) row = i;
+    for (Index i = 0; i < n; ++i) {
+      if (basis[static_cast<std::size_t>(i)] == z0 && T(i, entering) > eligible &&
+          T(i, rhs) - best * T(i, entering) <= zero_value) {
+        row = i;
+      }
     }
     if (basis[static_cast<std::size_t>(row)] != z0 && ties == TieRule::LargestPivot) {
       // Redundant contacts make degenerate rows (basic value 0) whose entry is zero in exact

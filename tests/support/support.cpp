@@ -1,6 +1,8 @@
 #include "support.hpp"
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <functional>
 
 namespace physlab::test {
@@ -12,6 +14,9 @@ std::mt19937_64& rng() {
   if (name != seeded_for) {
     seeded_for = name;
     engine.seed(Catch::rngSeed() ^ std::hash<std::string>{}(name));
+    // The seed sweep (tools/sweep.py) runs each test once with PHYSLAB_SEED_PROBE naming a file:
+    // the tests that reach this line are the ones a seed changes, and it runs only those again
+    if (const char* probe = std::getenv("PHYSLAB_SEED_PROBE")) std::ofstream(probe, std::ios::app) << name << '\n';
   }
   return engine;
 }

@@ -96,7 +96,8 @@ double lcpResidual(const MatX& A, const VecX& b, const VecX& f);
 /// \f$-\text{pivot\_tolerance}\,(\max|a_{ij}| + n(\sum_j |a_{dj}||f_j| + |b_d|))\f$), raise \f$f_d\f$ along the direction that keeps every
 /// clamped contact at \f$w = 0\f$ and every free contact at \f$f = 0\f$, by the largest step that keeps
 /// all \f$f \ge 0\f$ and \f$w \ge 0\f$; the contact that blocks the step changes set (d itself blocking
-/// ends the drive; ties go to d). Requires A symmetric positive semidefinite, singular ones (a
+/// ends the drive; ties go to d, and a step that leaves \f$w_d\f$ within that round-off of zero is a
+/// tie: d ends the drive with \f$w_d = 0\f$, the contact that blocked keeping its set). Requires A symmetric positive semidefinite, singular ones (a
 /// contact counted twice) included, or a P-matrix (any A on which the clamped subsystems stay
 /// nonsingular works). Each step is one pivot (`iterations`). The pivot limit, max(max_iterations,
 /// 10 n), is a guard against cycling on round-off, not a bound of the method: every contact takes
@@ -117,7 +118,8 @@ LcpSolution solveLcpPivoting(const MatX& A, const VecX& b, const LcpOptions& opt
 /// \f$b \ge 0\f$, else pivots on the tableau \f$w - A f - e z_0 = b\f$ from the most negative
 /// \f$b_i\f$ (ties: the last such row), choosing the entering variable as the complement of the
 /// one that left and the leaving one by the lexicographic minimum ratio test, until \f$z_0\f$
-/// leaves (when \f$z_0\f$ ties for leaving, it leaves). The test: with the tableau's right-hand
+/// leaves (when \f$z_0\f$ ties for leaving, it leaves; it ties also when the step leaves it within
+/// round-off of zero, at most n pivot_tolerance times max(1, the largest basic value)). The test: with the tableau's right-hand
 /// side \f$\bar b = B^{-1} b\f$, its first n columns \f$B^{-1}\f$ (they start as I) and the entering
 /// column \f$\bar a = B^{-1} a_e\f$, the leaving row r is the lexicographic minimum of
 /// \f[ \frac{1}{\bar a_i}\,\big(\bar b_i,\ (B^{-1})_{i0},\ \dots,\ (B^{-1})_{i,n-1}\big) \quad\text{over } \bar a_i > 0, \f]
