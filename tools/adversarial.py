@@ -31,7 +31,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from grader import is_identity  # noqa: E402  (the grader's identities of submitted code)
+from grader import grader_of, is_identity  # noqa: E402  (the grader's identities of submitted code)
 
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "tests" / "hidden" / "adversarial"
@@ -73,17 +73,24 @@ def markers(folders: list) -> set:
 
 
 def leftover_processes() -> list:
-    """Processes of the grader's identities (any run's), or of a grade's folders."""
+    """Processes a finished grade left behind. As root a grade runs submitted code under
+    identities that name its grader's process id (grader.identity()): a process of an identity
+    whose grader has ended is left behind, while other grades on the machine (with graders still
+    running) are not counted. Without root, processes in a grade's folders."""
     left = []
     for entry in os.scandir("/proc"):
         if not entry.name.isdigit():
             continue
         try:
+            uid = entry.stat().st_uid
             cmdline = Path(f"/proc/{entry.name}/cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
-            if is_identity(entry.stat().st_uid) or "physlab-sandbox-" in cmdline or "physlab-grade-" in cmdline:
-                left.append(f"{entry.name}: {cmdline[:80]}")
         except OSError:
             continue
+        if os.geteuid() == 0:
+            if is_identity(uid) and not Path(f"/proc/{grader_of(uid)}").exists():
+                left.append(f"{entry.name}: {cmdline[:80]}")
+        elif "physlab-sandbox-" in cmdline or "physlab-grade-" in cmdline:
+            left.append(f"{entry.name}: {cmdline[:80]}")
     return left
 
 

@@ -572,6 +572,11 @@ def is_identity(number: int) -> bool:
     return IDENTITY_BASE <= number < IDENTITY_BASE + IDENTITY_SPAN
 
 
+def grader_of(number: int) -> int:
+    """The process id of the grader whose identity `number` is."""
+    return (number - IDENTITY_BASE) >> 8
+
+
 def kill_group(pid: int) -> None:
     try:
         os.killpg(pid, signal.SIGKILL)
