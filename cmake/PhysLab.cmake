@@ -12,7 +12,10 @@
 # instructor has released (`./physlab publish --release`, released/NN_name/*.cpp), else the
 # student's own labs/NN_name. Later stages link it either way. PHYSLAB_RELEASED=OFF links the
 # student's own earlier labs even where the lab is released. No reference ships compiled: a
-# library of an unreleased lab would answer that lab's tests for the student (an oracle).
+# library of an unreleased lab would answer that lab's tests for the student (an oracle). Nor does
+# framework code that computes what a student function computes (common/answers/NN_name/): it
+# ships with the lab's release, and stand-ins built on the student's functions take its place
+# until then (physlab_add_lab()).
 
 set(PHYSLAB_ROOT "${CMAKE_CURRENT_LIST_DIR}/..")
 get_filename_component(PHYSLAB_ROOT "${PHYSLAB_ROOT}" ABSOLUTE)
@@ -36,6 +39,8 @@ if(CMAKE_SYSTEM_NAME STREQUAL "Linux" AND PHYSLAB_HAVE_SOLUTIONS AND NOT PHYSLAB
   set(PHYSLAB_REMOTE ON)
 endif()
 find_package(Python3 COMPONENTS Interpreter)
+
+option(PHYSLAB_FRAMEWORK_ANSWERS "Compile the framework answers (common/answers/), not their stand-ins (common/unreleased/); instructor's tree only" ON)
 
 option(PHYSLAB_PORTABLE_RUNNER "Test runner without the grader's notary (automatic where executables are not ELF: macOS, Windows)" OFF)
 
@@ -299,6 +304,35 @@ function(physlab_add_lab stage)
 
   # Framework code of the stage, compiled once and shared by both implementations.
   file(GLOB framework CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/common/src/${stage}/*.cpp")
+  # Framework answers: framework code that computes what a student function of the stage computes
+  # (the matrix-free cone PGS of Lab 6 is solveLcpPgsCone()'s sweeps over per-body velocities), in
+  # common/answers/NN_name/. They ship as a released lab's reference does: the instructor's tree
+  # compiles them; a student's copy has them once the lab is released
+  # (released/NN_name/framework/, ./physlab publish --release) and until then compiles their
+  # stand-ins, common/unreleased/NN_name/, one file of the same name each, built on the student's
+  # own functions. PHYSLAB_FRAMEWORK_ANSWERS=OFF compiles the stand-ins in the instructor's tree
+  # too, to test them against the reference.
+  file(GLOB answers CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/common/answers/${stage}/*.cpp")
+  file(GLOB stand_ins CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/common/unreleased/${stage}/*.cpp")
+  if(PHYSLAB_HAVE_SOLUTIONS)
+    set(answer_names "${answers}")
+    set(stand_in_names "${stand_ins}")
+    list(TRANSFORM answer_names REPLACE ".*/" "")
+    list(TRANSFORM stand_in_names REPLACE ".*/" "")
+    if(NOT answer_names STREQUAL stand_in_names)
+      message(FATAL_ERROR "lab ${stage}: common/answers/${stage} holds '${answer_names}' and "
+                          "common/unreleased/${stage} '${stand_in_names}': each framework answer needs "
+                          "its stand-in of the same name")
+    endif()
+  endif()
+  if(PHYSLAB_HAVE_SOLUTIONS AND PHYSLAB_FRAMEWORK_ANSWERS)
+    list(APPEND framework ${answers})
+  elseif(NOT PHYSLAB_HAVE_SOLUTIONS AND PHYSLAB_RELEASED AND EXISTS "${PHYSLAB_ROOT}/released/${stage}/framework")
+    file(GLOB released_answers CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/released/${stage}/framework/*.cpp")
+    list(APPEND framework ${released_answers})
+  else()
+    list(APPEND framework ${stand_ins})
+  endif()
   set(framework_objects "")
   if(framework)
     add_library(physlab_${stage}_framework OBJECT ${framework})

@@ -49,9 +49,9 @@
 #include "physlab/timewarp.hpp"
 #include "physlab/world.hpp"
 
+#include "../support/goals.hpp"
 #ifdef PHYSLAB_HAVE_BULLET
 #include "../support/bullet_world.hpp"
-#include "../support/goals.hpp"
 #endif
 
 using namespace physlab;

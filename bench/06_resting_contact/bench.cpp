@@ -33,7 +33,8 @@
 //   slop (the pyramid's top sinks by about one slop per layer: 30 layers of 2 mm, the default,
 //   would use up the 5 cm bar), symplectic Euler. PGS solves the friction cone (3 rows per point)
 //   matrix-free (RestingSettings::matrix_free: per-body velocity changes, the students' cone PGS
-//   iterates to round-off) with 20 sweeps (Bullet's and QuickStep's iterations) or 100, and dense
+//   iterates to round-off; the framework answer of common/answers/, which a student's copy gets
+//   with Lab 6's release, its slower stand-in until then) with 20 sweeps (Bullet's and QuickStep's iterations) or 100, and dense
 //   (the students' contactMatrix() and solveLcpPgsCone(), 20 sweeps); pivoting solves the normal
 //   rows only (it cannot take friction); Lemke solves the friction pyramid (4 directions: 6
 //   unknowns per point).

@@ -151,12 +151,17 @@ struct RestingSettings {
   /// force mixing): the four corners of a face are redundant contacts whose clamped block would
   /// otherwise be singular. It changes the forces by about this fraction.
   double regularization = 1e-9;
-  /// Velocity-level PGS on the friction cone without forming A (framework code, not the
-  /// students'): each row keeps its Jacobian and the sweep updates per-body velocity changes,
-  /// \f$w_i = b_i + J_i \Delta v\f$, as Bullet, Box2D and ODE's QuickStep do. Its iterates are
-  /// solveLcpPgsCone()'s on contactMatrix() and velocityBias() up to round-off, at a cost linear in
-  /// the rows instead of quadratic. Only for method PGS at the velocity level; the tests leave it
-  /// off so that the students' functions run.
+  /// Velocity-level PGS on the friction cone without forming A: each row keeps its Jacobian and
+  /// the sweep updates per-body velocity changes, \f$w_i = b_i + J_i \Delta v\f$, as Bullet, Box2D
+  /// and ODE's QuickStep do. Its iterates are solveLcpPgsCone()'s on contactMatrix() and
+  /// velocityBias() up to round-off, at a cost linear in the rows instead of quadratic. It computes
+  /// what solveLcpPgsCone() computes, so it is a framework answer (common/answers/): a student's copy
+  /// has it only once Lab 6 is released (released/06_resting_contact/framework/). Until then the
+  /// same setting runs the same sweeps point by point with your own functions, each point's 3 x 3
+  /// block from contactMatrix() and one sweep of your solveLcpPgsCone() on it: the same iterates, a
+  /// cost still linear in the rows, about 9 times the framework's (the benchmark's figures are the
+  /// framework's). Only for method PGS at the velocity level; the tests leave it off (but for the
+  /// 10-row pyramid) so that the students' functions run whole.
   bool matrix_free = false;
   /// One line naming every setting.
   std::string toString() const;
@@ -185,7 +190,7 @@ class LcpContactSolver : public RestingContactSolver {
   double lastResidual() const { return last_residual_; }
 
  private:
-  // One contact point of the matrix-free cone PGS: rows n, t, o with their Jacobians
+  // One contact point of the matrix-free cone PGS (common/answers/): rows n, t, o with their Jacobians
   struct PointRows {
     std::size_t a = 0, b = 0;
     double inv_ma = 0.0, inv_mb = 0.0;
@@ -199,8 +204,14 @@ class LcpContactSolver : public RestingContactSolver {
     double mu = 0.0;
     Vec3 f = Vec3::Zero();     // (f_n, f_t, f_o)
   };
+  // RestingSettings::matrix_free: common/answers/06_resting_contact/cone_matrix_free.cpp, or before
+  // Lab 6 is released in a student's copy its stand-in, common/unreleased/06_resting_contact/
   int solveConeMatrixFree(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
                           const std::vector<int>& resting, double h);
+  // The relative normal velocity of contact c's points now [m/s].
+  static double normalVelocity(const std::vector<ContactBody>& bodies, const Contact& c);
+  // A colliding point's normal bias aims at its bounce when that is faster than the push apart.
+  static double bounceBias(double bias, const std::vector<ContactBody>& bodies, const Contact& c);
 
   RestingSettings settings_;
   std::vector<PointRows> points_;
