@@ -2163,15 +2163,38 @@ def cmd_stages(args) -> int:
     return 0
 
 
+class Parser(argparse.ArgumentParser):
+    """Option errors in one line that names the option and the value, without the grader's
+    internal usage (people meet it through ./physlab, whose --help is theirs)."""
+
+    def error(self, message):
+        self.exit(2, f"physlab: {self.prog.split()[-1]}: {message}\n")
+
+
+def whole_number(text: str) -> int:
+    if not text.isdigit():
+        raise argparse.ArgumentTypeError(f"needs a whole number (e.g. 42), got '{text}'")
+    return int(text)
+
+
+def seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = 0.0
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"needs a positive number of seconds, got '{text}'")
+    return value
+
+
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    sub = parser.add_subparsers(dest="command", required=True)
-    common = argparse.ArgumentParser(add_help=False)
+    parser = Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    common = Parser(add_help=False)
     common.add_argument("--labs", nargs="*", default=[], help="lab numbers or names (default: all)")
-    common.add_argument("--seed", type=int, default=int.from_bytes(os.urandom(3), "big"),
+    common.add_argument("--seed", type=whole_number, default=int.from_bytes(os.urandom(3), "big"),
                         help="Catch2 --rng-seed for every test (default: random, printed)")
-    common.add_argument("--timeout", type=float, default=None,
+    common.add_argument("--timeout", type=seconds, default=None,
                         help="seconds per test case (default 30, or the course file's; the slowest "
                              "reference test takes about 1 s)")
     common.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
