@@ -2133,8 +2133,15 @@ def cmd_gradescope(args) -> int:
             print(f"grader: course file {error}; no zip written", file=sys.stderr)
             return 2
         print(course.summary())
-    tracked = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True,
-                             check=True).stdout.decode().split("\0")
+    listing = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True)
+    if listing.returncode != 0:  # not a checkout, or one git will not read (owned by another user)
+        why = listing.stderr.decode(errors="replace").strip().splitlines()
+        print(f"grader: gradescope: the zip holds the files git tracks, and git cannot list them in {ROOT}: "
+              f"{why[0] if why else 'status ' + str(listing.returncode)}"
+              + (f"\n  if you trust this folder: git config --global --add safe.directory {ROOT}"
+                 if any("safe.directory" in line for line in why) else "") + "\nno zip written", file=sys.stderr)
+        return 2
+    tracked = listing.stdout.decode().split("\0")
     files = [f for f in tracked if GRADING_FILES.match(f)]
     out = Path(args.out).resolve()
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
