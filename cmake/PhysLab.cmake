@@ -28,6 +28,7 @@ option(PHYSLAB_RELEASED "Link later labs against the released reference of earli
 # Checked at every build (CONFIGURE_DEPENDS): a pull that brings a newly released lab reconfigures,
 # so that later labs build on it from then on.
 file(GLOB PHYSLAB_RELEASED_LABS CONFIGURE_DEPENDS LIST_DIRECTORIES true "${PHYSLAB_ROOT}/released/*")
+list(FILTER PHYSLAB_RELEASED_LABS INCLUDE REGEX "/[0-9][0-9]_[a-z0-9_]+$")  # the labs, not released/README.txt
 if(PHYSLAB_RELEASED_LABS AND PHYSLAB_RELEASED AND NOT PHYSLAB_HAVE_SOLUTIONS)
   list(TRANSFORM PHYSLAB_RELEASED_LABS REPLACE ".*/" "")
   message(STATUS "later labs build on the released reference of: ${PHYSLAB_RELEASED_LABS}")
