@@ -4,9 +4,11 @@
 Runs every Catch2 test case in its own process group with a time limit and resource limits, takes
 each verdict from an authenticated channel (tests/support/runner.cpp) rather than from anything the
 test prints, and writes a readable report plus Gradescope's results.json. `grade` compiles a
-submission's lab files apart from the instructor's tree, checks what the objects define, links them
-with the instructor's prebuilt objects, and runs them as an unprivileged user when run as root.
-The design and its limits are on the Grading page (docs/grading.md).
+submission's lab files apart from the instructor's tree (in bubblewrap where allowed), checks what
+the objects define, and links them with the instructor's prebuilt objects (Labs 1, 2, 4) or into a
+sandboxed worker that the instructor's checker calls (Labs 3, 5, 6: Isolation, Program), running
+everything as this run's own identities when run as root. The design and its limits are on the
+Grading page (docs/grading.md).
 """
 
 import argparse
@@ -446,9 +448,10 @@ def describe_failure(output: str) -> tuple:
 # ---- running untrusted processes ---------------------------------------------------------------
 
 class Sandbox:
-    """Where and as whom student code runs. As root: one unprivileged user per parallel worker, so
-    that killing every process of that user ends whatever a test left behind. Otherwise: the
-    current user, with process groups and the grader as subreaper for orphans.
+    """Where and as whom student code runs. As root: one identity of this run per parallel slot
+    (identity()), so that killing every process of that identity ends whatever a test left
+    behind, and nothing of another run. Otherwise: the current user, with process groups and the
+    grader as subreaper for orphans.
 
     Several submissions graded at once each have a Sandbox of their own with slots (users) no other
     one has (`first`), and as root a group of their own (`group`): only its users may enter that
