@@ -54,17 +54,15 @@ Family currentFamily(const std::exception& error);
 
 // ---- checker side ---------------------------------------------------------------------------------
 
-/// Sends a request (function `index` of the stage's table, arguments already written) and
-/// returns the reply's bytes; starts the worker on first use. WorkerFailure when it cannot.
-std::vector<char> exchange(std::uint32_t index, const char* function, Writer& request);
+/// Sends a request (the index of `function` in the stage's table, then its arguments) and returns
+/// the reply's bytes; starts the worker on first use. A worker that cannot start or that ends
+/// during the call ends the test (see remote.cpp).
+std::vector<char> exchange(const char* function, Writer& request);
 
 /// One proxied call: arguments in, then the reply read back in the same order the worker wrote it.
 class Call {
  public:
-  Call(std::uint32_t index, const char* function) : index_(index), function_(function) {
-    const std::uint32_t header = index;
-    request_.bytes(&header, sizeof header);
-  }
+  Call(std::uint32_t index, const char* function) : function_(function) { request_.bytes(&index, sizeof index); }
   template <class T>
   void in(const T& value) {
     put(request_, value);
@@ -77,7 +75,7 @@ class Call {
   }
   /// Sends the request; then read every changed argument with back(), and end with result().
   void send() {
-    reply_ = exchange(index_, function_, request_);
+    reply_ = exchange(function_, request_);
     reader_.emplace(reply_.data(), reply_.size());
     get(*reader_, ending_);
   }
@@ -119,7 +117,6 @@ class Call {
   [[noreturn]] void throwHere();
   void finish();
 
-  std::uint32_t index_;
   const char* function_;
   Writer request_;
   std::vector<char> reply_;
