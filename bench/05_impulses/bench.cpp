@@ -383,10 +383,11 @@ int main(int argc, char** argv) {
     // The main table: speed and penetration per engine and size, with the time ratio to Bullet.
     Table table({"N", "engine", "ms per step", "steps per second", "time / Bullet's", "max penetration [mm]",
                  "in the last step [mm]", "last step, median of " + std::to_string(kShakenRuns) + " [mm]", "contact points per step", "solver sweeps per step", "outside walls / below ground at end"});
+    const Engine* bullet_engine = engines.size() > 2 ? &engines.back() : nullptr;  // when built with Bullet
     for (std::size_t s = 0; s < sizes.size(); ++s) {
       for (const Engine& e : engines) {
         const RunResult& r = e.at[s];
-        const double bullet_seconds = engines.size() > 2 ? engines[2].at[s].seconds_per_step : NAN;
+        const double bullet_seconds = bullet_engine ? bullet_engine->at[s].seconds_per_step : NAN;
         table.add({std::to_string(sizes[s]), e.name, fmt(1e3 * r.seconds_per_step), fmt(1.0 / r.seconds_per_step),
                    std::isfinite(bullet_seconds) ? fmt(r.seconds_per_step / bullet_seconds) : "-",
                    fmt(1e3 * r.max_penetration), fmt(1e3 * r.last_penetration), fmt(1e3 * r.last_penetration_median),
