@@ -21,6 +21,7 @@ import json
 import os
 import re
 import secrets
+import select
 import shutil
 import signal
 import stat
@@ -224,10 +225,13 @@ class SubmissionError(Exception):
 @dataclass(frozen=True)
 class Program:
     """What runs a test: a test executable that links the submitted code (its verdict from the
-    notary), or a checker that links none and starts `worker`, the submitted code's process."""
+    notary), or a checker that links none and starts `worker`, the submitted code's process.
+    `batch`: code the grader trusts (a checker, or the tree's own tests), which runs many tests
+    per process and records each one's verdict itself (run_batch())."""
 
     exe: Path
     worker: Path = None
+    batch: bool = False
 
 
 @dataclass
@@ -805,14 +809,163 @@ def judge(case: TestCase, code, budget: float, key: str, verdicts: str, output: 
     case.output = detail or output[-OUTPUT_LIMIT:]
 
 
+# Tests per process in a batch: enough that starting one costs little beside its tests, few
+# enough that the batches of a lab spread over every slot.
+BATCH_SIZE = 12
+# What a batch's records say (tests/support/runner.cpp, batch mode).
+RECORD_RE = re.compile(r"^(start|end) ([0-9a-f]+)(?: (\d+) (\d+))?$")
+TEST_CASE_RE = re.compile(r"<TestCase\b.*?</TestCase>", re.DOTALL)
+
+
 def run_cases(sandbox: Sandbox, jobs: list, seed: int, timeout: float, deadline: Deadline,
               scratch: Path, homes: Path, workers: int) -> None:
-    """Runs (exe, case) pairs, `workers` at a time."""
+    """Runs (program, case) pairs, `workers` at a time: a batch program's cases in batches of
+    BATCH_SIZE (run_batch()), any other's one process each (run_one())."""
+    batches, single = {}, []
+    for program, case in jobs:
+        if program.batch:
+            batches.setdefault(program, []).append(case)
+        else:
+            single.append((program, case))
     with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(run_one, sandbox, exe, case, seed, timeout, deadline, scratch, homes)
-                   for exe, case in jobs]
+        futures = [pool.submit(run_batch, sandbox, program, cases[i:i + BATCH_SIZE], seed, timeout,
+                               deadline, scratch, homes)
+                   for program, cases in batches.items() for i in range(0, len(cases), BATCH_SIZE)]
+        futures += [pool.submit(run_one, sandbox, program, case, seed, timeout, deadline, scratch, homes)
+                    for program, case in single]
         for future in futures:
             future.result()
+
+
+def run_batch(sandbox: Sandbox, program: Program, cases: list, seed: int, timeout: float,
+              deadline: Deadline, scratch: Path, homes: Path) -> None:
+    """Runs `cases` of one batch program, as many per process as it can: a process that ends in
+    the middle of a test (a crash, a worker that failed it, a time-out) decides that test, and
+    a new process runs the ones after it. Each test keeps its own time limit."""
+    pending = list(cases)
+    while pending:
+        if min(timeout, deadline.left()) <= 1.0:
+            for case in pending:
+                case.status, case.output = "not run", "not run: the grading deadline was reached"
+            return
+        slot = sandbox.acquire()
+        try:
+            decided = run_batch_once(sandbox, slot, program, pending, seed, timeout, deadline, scratch, homes)
+        except Exception as error:  # an error of the grader's own costs these tests, not the grade
+            for case in pending:
+                case.status, case.output = "crashed", f"the grader could not run this test: {error}"
+            return
+        finally:
+            sandbox.release(slot)
+        pending = [case for case in pending if id(case) not in decided]
+
+
+def run_batch_once(sandbox: Sandbox, slot: int, program: Program, cases: list, seed: int,
+                   timeout: float, deadline: Deadline, scratch: Path, homes: Path) -> set:
+    """One process of a batch; returns the ids of the cases it decided (at least one)."""
+    by_hex = {case.name.encode("utf-8").hex(): case for case in cases}
+    work = Path(tempfile.mkdtemp(dir=scratch, prefix="batch-"))
+    decided, current, timed_out = set(), None, False
+    started = time.monotonic()  # of the current test, or of the wait for the next one
+    try:
+        records_read, records_write = os.pipe()
+        out_fd = os.open(work / "output", os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+        cmd = [str(program.exe), ",".join(escape_spec(c.name) for c in cases), "-r", "xml", "--rng-seed", str(seed)]
+        env = {"PATH": "/usr/bin:/bin", "LANG": "C.UTF-8", "HOME": str(homes / f"home-{slot}"),
+               "TMPDIR": str(homes / f"home-{slot}"), "PHYSLAB_RECORDS": str(records_write)}
+        if program.worker is not None:
+            env.update(sandbox.isolation.environment(program.worker))
+        limits = sandbox.limits(TEST_MEMORY, timeout * len(cases), min(OUTPUT_FILE_LIMIT * len(cases), 64 << 20))
+        try:
+            proc = sandbox.spawn(limits + cmd, sandbox.ids(slot), cwd=homes / f"home-{slot}", env=env,
+                                 stdout=out_fd, stderr=out_fd, pass_fds=(records_write,))
+        finally:
+            for fd in (records_write, out_fd):
+                os.close(fd)
+        try:
+            pending = b""
+            while True:
+                now = time.monotonic()
+                wait = min(deadline.left(), started + timeout - now)
+                if wait <= 0:
+                    timed_out = True
+                    break
+                ready, _, _ = select.select([records_read], [], [], min(wait, 1.0))
+                if not ready:
+                    continue
+                chunk = os.read(records_read, 1 << 16)
+                if not chunk:
+                    break
+                *lines, pending = (pending + chunk).split(b"\n")
+                for line in lines:
+                    m = RECORD_RE.match(line.decode("ascii", errors="replace"))
+                    case = by_hex.get(m.group(2)) if m else None
+                    if case is None or id(case) in decided:
+                        continue
+                    if m.group(1) == "start":
+                        current, started = case, time.monotonic()
+                    elif case is current:
+                        passed, failed = int(m.group(3)), int(m.group(4))
+                        case.seconds = time.monotonic() - started
+                        case.status = "passed" if failed == 0 and passed > 0 else "failed"
+                        case.output = "" if failed or passed else "the test ran but asserted nothing"
+                        decided.add(id(case))
+                        current, started = None, time.monotonic()
+        finally:
+            os.close(records_read)
+            kill_group(proc.pid)
+            code = proc.wait()
+            with sandbox.lock:
+                sandbox.live.discard(proc.pid)
+            sandbox.end(slot)
+        output = read_capped(work / "output", 16 << 20)
+        explain_batch(cases, decided, output)
+        if current is not None:
+            current.seconds = time.monotonic() - started
+            ended_test(current, None if timed_out else code, timeout, output)
+            decided.add(id(current))
+        elif not decided:  # the process never started a test: nothing after it would either
+            for case in cases:
+                ended_test(case, None if timed_out else code, timeout, output)
+                decided.add(id(case))
+        return decided
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def explain_batch(cases: list, decided: set, output: str) -> None:
+    """The explanation of each failed test of a batch, from its part of the XML report."""
+    failed = {case.name: case for case in cases if id(case) in decided and case.status == "failed"}
+    for match in TEST_CASE_RE.finditer(output):
+        try:
+            name = ET.fromstring(match.group(0)).get("name")
+        except ET.ParseError:
+            continue
+        case = failed.get(name)
+        if case is not None:
+            status, detail, case.checks, case.captured = describe_failure(f"<Catch>{match.group(0)}</Catch>")
+            case.status = status
+            case.output = "\n".join(filter(None, [case.output, detail])) or "a check failed"
+
+
+def ended_test(case: TestCase, code, budget: float, output: str) -> None:
+    """A test of a batch that took its process with it: `code` is how the process ended (None:
+    killed at the test's time limit); a checker says why a worker failed it on its last line."""
+    said = [line[len("physlab: "):] for line in output.splitlines() if line.startswith("physlab: ")]
+    why = said[-1][:OUTPUT_LIMIT] if said else ""
+    if code is None:
+        case.status, case.output = "timed out", f"killed after {budget:.3g} s"
+    elif code == NOT_GRADED:
+        case.status, case.output = "not graded", why
+    elif code < 0:
+        number = -code
+        name = signal.Signals(number).name if number in signal.Signals._value2member_map_ else str(number)
+        extra = " (output limit exceeded)" if number == signal.SIGXFSZ else ""
+        case.status, case.output = "crashed", f"crashed ({name}){extra}"
+    elif why:
+        case.status, case.output = "failed", why
+    else:
+        case.status, case.output = "crashed", f"the test process ended (exit code {code}) without a verdict"
 
 
 # ---- reports -----------------------------------------------------------------------------------
@@ -1100,7 +1253,7 @@ def remote_pairs(build: Path, stages: list, sandbox: Sandbox, scratch: Path, res
             elif spec.get(key):  # framework tests grade nothing and run in the ordinary executables
                 cases = [c for c in list_tests(Path(spec[key]), stage) if c.graded]
                 result.tests += cases
-                jobs += [(Program(Path(spec[key]), Path(spec["reference_worker"])), c) for c in cases]
+                jobs += [(Program(Path(spec[key]), Path(spec["reference_worker"]), batch=True), c) for c in cases]
         results.append(result)
     return jobs
 
@@ -1127,13 +1280,13 @@ def cmd_run(args) -> int:
                 continue
             cases = course_points(stage, list_tests(exe, stage))
             result.tests += cases
-            jobs += [(Program(own_file_executable(exe, c)), c) for c in cases]
+            jobs += [(Program(own_file_executable(exe, c), batch=True), c) for c in cases]
         results.append(result)
     if args.variant == "solutions":
         jobs += remote_pairs(build, stages, sandbox, scratch, results)
     if args.variant == "solutions" and (build / "test_common").exists():
         common = StageResult("common", list_tests(build / "test_common", "common"))
-        jobs += [(Program(build / "test_common"), c) for c in common.tests]
+        jobs += [(Program(build / "test_common", batch=True), c) for c in common.tests]
         results.append(common)
     for slot in sandbox.slots:
         (scratch / f"home-{slot}").mkdir()
@@ -1788,7 +1941,7 @@ def build_remote_stage(builder: Builder, kit: Kit, result: StageResult, objects:
     checkers = {"tests": runnable(Path(spec["checker"]), run_dir)}
     if hidden and spec.get("checker_hidden"):
         checkers["hidden"] = Path(spec["checker_hidden"])  # copied to the run folder after the visible tests
-    exes = {kind: {None: Program(checker, worker)} for kind, checker in checkers.items()}
+    exes = {kind: {None: Program(checker, worker, batch=True)} for kind, checker in checkers.items()}
     exes.setdefault("hidden", {})
     reference = spec.get("reference", {})
     units = sorted({c.unit for c in result.tests if c.unit in objects and c.unit in reference})
@@ -1806,7 +1959,7 @@ def build_remote_stage(builder: Builder, kit: Kit, result: StageResult, objects:
             continue
         os.chmod(path, 0o755)
         for kind, checker in checkers.items():
-            exes[kind][unit] = Program(checker, path)
+            exes[kind][unit] = Program(checker, path, batch=True)
     return exes
 
 
@@ -1919,7 +2072,7 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
         for program, case in hidden_jobs:
             if program.exe not in copies:
                 copies[program.exe] = runnable(program.exe, run_dir)
-            jobs.append((Program(copies[program.exe], program.worker), case))
+            jobs.append((Program(copies[program.exe], program.worker, program.batch), case))
         make_homes(sandbox, shared)
         run_cases(sandbox, jobs, args.seed, args.timeout, deadline, private, shared, workers)
         sandbox.finish()

@@ -49,6 +49,7 @@ std::string fpToString(float value, int precision);
 #endif
 #if !defined(PHYSLAB_PORTABLE_RUNNER) || defined(__unix__) || defined(__APPLE__)
 #define PHYSLAB_POSIX 1
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #endif
@@ -245,14 +246,54 @@ std::string hex(const std::string& text) {
   return out;
 }
 
+#if defined(PHYSLAB_POSIX)
+// Batch mode (PHYSLAB_RECORDS=<fd>): many tests in one process, for code the grader trusts — a
+// checker, which never loads submitted code, or the tree's own tests in `./physlab test`. One
+// line per event on <fd>, written before anything else can happen:
+//   start <name in hex>                  a test begins
+//   end <name in hex> <passed> <failed>  it ended, with its counts of assertions
+// A test that starts and never ends took the process with it (a crash, a worker that failed it,
+// a time-out); the grader decides it from how the process ended and runs the rest again.
+int records_fd = -1;
+
+void startRecords() {
+  const char* spec = std::getenv("PHYSLAB_RECORDS");
+  if (spec == nullptr) return;
+  const int fd = parseFd(spec, '\0');
+  // Not inherited by anything this process starts (a checker's worker): records come from here only
+  if (fd < 0 || fcntl(fd, F_SETFD, FD_CLOEXEC) != 0) return;
+  records_fd = fd;
+}
+
+void record(const char* event, const std::string& name, const Catch::Counts* counts = nullptr) {
+  std::string line = std::string(event) + ' ' + hex(name);
+  if (counts) line += ' ' + std::to_string(counts->passed) + ' ' + std::to_string(counts->failed);
+  line += '\n';
+  writeAll(records_fd, line.data(), line.size());
+}
+#endif
+
 class VerdictListener : public Catch::TestEventListenerBase {
  public:
   using TestEventListenerBase::TestEventListenerBase;
+  void testCaseStarting(const Catch::TestCaseInfo& info) override {
+#if defined(PHYSLAB_POSIX)
+    if (records_fd < 0) return;
+    // The reports of the tests before this one are whole on disk, whatever ends this process
+    stream.flush();
+    record("start", info.name);
+#else
+    static_cast<void>(info);
+#endif
+  }
   void testCaseEnded(const Catch::TestCaseStats& stats) override {
     ++tally.cases;
     tally.name = stats.testInfo.name;
     tally.passed += stats.totals.assertions.passed;
     tally.failed += stats.totals.assertions.failed;
+#if defined(PHYSLAB_POSIX)
+    if (records_fd >= 0) record("end", stats.testInfo.name, &stats.totals.assertions);
+#endif
   }
 };
 
@@ -289,6 +330,9 @@ int main(int argc, char** argv) {
   if (argc == 2 && std::strcmp(argv[1], "--physlab-list") == 0) return listTests();
 #if defined(PHYSLAB_PORTABLE_RUNNER) && defined(PHYSLAB_POSIX)
   startPortableChannel();
+#endif
+#if defined(PHYSLAB_POSIX)
+  startRecords();
 #endif
   Catch::Session session;
   const int status = session.applyCommandLine(argc, argv);

@@ -9,7 +9,8 @@
 // caller's variables, or throws an exception of the same family with the same message. So the
 // tests run unchanged, every assertion is decided in the checker, and no submitted code is ever
 // loaded there. The worker is started at the first call, by the command the grader puts in
-// PHYSLAB_WORKER (the sandbox: bubblewrap and a seccomp filter), and ends with the test.
+// PHYSLAB_WORKER (the sandbox: bubblewrap and a seccomp filter), and ends with the test (each test
+// has a worker of its own: listener.cpp).
 #pragma once
 
 #include <cstdint>
@@ -53,6 +54,10 @@ Family currentFamily(const std::exception& error);
 [[noreturn]] void rethrow(Family family, const std::string& message);
 
 // ---- checker side ---------------------------------------------------------------------------------
+
+/// Ends the worker, if one was started: the next call starts a fresh one. Each test's calls go to
+/// a worker of its own, so that no test's result depends on what ran before it in the process.
+void endWorker();
 
 /// Sends a request (the index of `function` in the stage's table, then its arguments) and returns
 /// the reply's bytes; starts the worker on first use. A worker that cannot start or that ends
