@@ -273,7 +273,10 @@ struct Worker {
       return "was killed by signal " + std::to_string(number) + (name ? std::string(" (SIG") + name + ")" : "");
     }
     const int code = WEXITSTATUS(status);
-    return "exited with status " + std::to_string(code);
+    // bubblewrap ends with 128 + the signal that killed the worker inside it
+    const char* name = code > 128 ? sigabbrev_np(code - 128) : nullptr;
+    return "exited with status " + std::to_string(code) +
+           (name ? std::string(" (killed by SIG") + name + " in its sandbox)" : std::string());
   }
 };
 
