@@ -254,14 +254,14 @@ endfunction()
 # submitted objects and the server's (`server` in grading/NN.json), statically, so that its
 # sandbox needs no file but itself. worker_NN is that link with the reference: the checker and
 # worker pair on the reference passes every test (./physlab test checks it).
-function(physlab_add_remote stage framework_objects deps dep_files hidden out)
+function(physlab_add_remote stage framework_objects in_worker deps dep_files hidden out)
   set(generated "${CMAKE_BINARY_DIR}/remote/${stage}")
   file(GLOB stubs CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/labs/${stage}/*.cpp")
   add_custom_command(
       OUTPUT "${generated}_proxy.cpp" "${generated}_server.cpp"
       COMMAND "${Python3_EXECUTABLE}" "${PHYSLAB_ROOT}/tools/remote_gen.py" "${PHYSLAB_ROOT}/labs/${stage}"
-              "${generated}_proxy.cpp" "${generated}_server.cpp"
-      DEPENDS ${stubs} "${PHYSLAB_ROOT}/tools/remote_gen.py"
+              "${generated}_proxy.cpp" "${generated}_server.cpp" ${in_worker}
+      DEPENDS ${stubs} ${in_worker} "${PHYSLAB_ROOT}/tools/remote_gen.py"
       COMMENT "Proxies and worker table of ${stage}")
   # The framework of the stage and the reference of earlier ones, without this stage's own
   # functions: in the checker the proxies stand in for them.
@@ -294,7 +294,7 @@ function(physlab_add_remote stage framework_objects deps dep_files hidden out)
 endfunction()
 
 function(physlab_add_lab stage)
-  cmake_parse_arguments(ARG "REMOTE" "" "DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "REMOTE" "" "DEPENDS;IN_WORKER" ${ARGN})
   # Earlier stages this one links, with their own dependencies (the grader links them whole).
   set(closure "")
   foreach(dep IN LISTS ARG_DEPENDS)
@@ -339,12 +339,27 @@ function(physlab_add_lab stage)
   else()
     list(APPEND framework ${stand_ins})
   endif()
+  # IN_WORKER: framework files that a remote lab's checker leaves to the worker (see
+  # physlab_add_remote); every other build links them as the rest of the framework.
+  set(in_worker "")
+  foreach(file IN LISTS ARG_IN_WORKER)
+    list(APPEND in_worker "${PHYSLAB_ROOT}/common/src/${stage}/${file}")
+  endforeach()
   set(framework_objects "")
+  set(checked_framework_objects "")
+  if(in_worker)
+    list(REMOVE_ITEM framework ${in_worker})
+    add_library(physlab_${stage}_in_worker OBJECT ${in_worker})
+    target_link_libraries(physlab_${stage}_in_worker PUBLIC physlab_common ${deps})
+    physlab_cxx(physlab_${stage}_in_worker)
+    set(framework_objects $<TARGET_OBJECTS:physlab_${stage}_in_worker>)
+  endif()
   if(framework)
     add_library(physlab_${stage}_framework OBJECT ${framework})
     target_link_libraries(physlab_${stage}_framework PUBLIC physlab_common ${deps})
     physlab_cxx(physlab_${stage}_framework)
-    set(framework_objects $<TARGET_OBJECTS:physlab_${stage}_framework>)
+    list(APPEND framework_objects $<TARGET_OBJECTS:physlab_${stage}_framework>)
+    set(checked_framework_objects $<TARGET_OBJECTS:physlab_${stage}_framework>)
   endif()
 
   # Student implementation, from PHYSLAB_LABS_DIR (absent in a submission that left it out).
@@ -434,7 +449,8 @@ function(physlab_add_lab stage)
   endforeach()
   set(remote_json "")
   if(ARG_REMOTE AND PHYSLAB_HAVE_SOLUTIONS AND PHYSLAB_REMOTE)
-    physlab_add_remote(${stage} "${framework_objects}" "${deps}" "${dep_files}" "${hidden}" remote_json)
+    physlab_add_remote(${stage} "${checked_framework_objects}" "${in_worker}" "${deps}" "${dep_files}" "${hidden}"
+                       remote_json)
   endif()
   file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/grading/${stage}.json" CONTENT "{
   \"stage\": \"${stage}\",${remote_json}

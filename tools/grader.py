@@ -670,7 +670,7 @@ class Isolation:
         return [self.bwrap, "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
                 "--clearenv", "--ro-bind", str(worker), "/worker", "--seccomp", "5", "--chdir", "/", "/worker"]
 
-    def compiling(self, cmd: list, work: Path, include: Path) -> list:
+    def compiling(self, cmd: list, work: Path, include: Path, precompiled: Path = None) -> list:
         """`cmd` (a compile of a submitted file in `work`) in bubblewrap's namespaces where they
         are allowed: the compiler sees the system's files (/usr), the framework's headers and the
         file, and nothing of the instructor's tree, other submissions or the network."""
@@ -686,6 +686,7 @@ class Isolation:
             view += ["--ro-bind", "/etc/alternatives", "/etc/alternatives"]
         return [self.bwrap, "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
                 *view, "--dev", "/dev", "--tmpfs", "/tmp", "--ro-bind", str(include), str(include),
+                *(["--ro-bind", str(precompiled), str(precompiled)] if precompiled else []),
                 "--bind", str(work), str(work), "--chdir", str(work), "--"] + cmd
 
     def describe(self) -> str:
@@ -1144,6 +1145,7 @@ def gradescope_json(results: list, elapsed: float) -> dict:
                     [t.status] + ([hint_of(t)] if hint_of(t) else []) + [t.output]))[:OUTPUT_LIMIT],
                 "visibility": "after_published" if t.hidden else "visible",
                 "tags": t.tags,
+                "extra_data": {"seconds": round(t.seconds, 3)},  # where a grade's time goes
             })
     notes = [clean(f"lab {r.stage}: {n}") for r in results for n in r.notes]
     return {
@@ -1366,6 +1368,8 @@ class Kit:
         self._libm = None
         self._api = {}
         self._symbols = {}
+        self._precompiled = {}
+        self._precompiled_lock = threading.Lock()
 
     def compiler(self, include: Path) -> list:
         """The compiler with the reference's flags and the framework's and Eigen's headers."""
@@ -1374,9 +1378,66 @@ class Kit:
             cmd += ["-isystem", d]
         return cmd
 
-    def compile_command(self, include: Path, source: Path, obj: Path) -> list:
-        return self.compiler(include) + self.toolchain["warnings"].split() + [
+    def compile_command(self, include: Path, source: Path, obj: Path, header: Path = None) -> list:
+        """`header`: the stage's precompiled framework headers (precompiled()), included first."""
+        return self.compiler(include) + self.toolchain["warnings"].split() + (
+            ["-include", str(header)] if header else []) + [
             "-MD", "-MF", str(obj.with_suffix(".d")), "-c", str(source), "-o", str(obj)]
+
+    def precompiled(self, stage: str):
+        """The framework headers the stage's stubs include, precompiled with the flags a submitted
+        file compiles with (GCC's .gch): a file then skips parsing Eigen and the framework, a
+        third of its compile. They hold only the framework's public headers, and live where the
+        sandbox's identities can read them (PRECOMPILED, not the instructor's tree, which is
+        often closed to other users). Built at the first grade that needs them; None where the
+        compiler would not use them, and the files then compile as they are."""
+        with self._precompiled_lock:
+            if stage not in self._precompiled:
+                self._precompiled[stage] = self._precompile(stage)
+            header = self._precompiled[stage]
+        if header:
+            os.utime(header.parent)  # in use: prune_precompiled() spares it
+        return header
+
+    def _precompile(self, stage: str):
+        includes = sorted({i for f in (ROOT / "labs" / stage).glob("*.cpp")
+                           for i in re.findall(r'^#include\s+"(physlab/[^"]+)"', f.read_text(), re.MULTILINE)})
+        if not includes:
+            return None
+        text = ("// The framework headers of the stage's stubs, precompiled for grading (tools/grader.py)\n"
+                + "".join(f'#include "{i}"\n' for i in includes))
+        folder = precompiled_folder()
+        if folder is None:
+            return None
+        final = folder / f"{stage}-{hashlib.sha256((self.digest + text).encode()).hexdigest()[:16]}"
+        header = final / "framework.hpp"
+        if (final / "framework.hpp.gch").exists():
+            return header
+        prune_precompiled(folder)
+        work = Path(tempfile.mkdtemp(dir=folder, prefix=".building-"))
+        try:
+            (work / "framework.hpp").write_text(text)
+            base = self.compiler(ROOT / "common" / "include") + self.toolchain["warnings"].split()
+            built = subprocess.run(base + ["-x", "c++-header", str(work / "framework.hpp"), "-o",
+                                           str(work / "framework.hpp.gch")], capture_output=True, timeout=300)
+            if built.returncode != 0:
+                return None
+            # Only a header the compiler then reads from its .gch ("!" in -H's list) saves anything
+            probe = subprocess.run(base + ["-include", str(work / "framework.hpp"), "-H", "-fsyntax-only",
+                                           "-x", "c++", "/dev/null"], capture_output=True, text=True, timeout=120)
+            if f"! {work / 'framework.hpp.gch'}" not in probe.stderr:
+                return None
+            for path in (work, work / "framework.hpp", work / "framework.hpp.gch"):
+                os.chmod(path, 0o755 if path.is_dir() else 0o644)
+            try:
+                os.rename(work, final)  # whole or not at all: another grade may be building it too
+            except OSError:
+                pass  # that grade's is in place
+            return header if (final / "framework.hpp.gch").exists() else None
+        except (OSError, subprocess.TimeoutExpired):
+            return None
+        finally:
+            shutil.rmtree(work, ignore_errors=True)
 
     def preprocess_command(self, include: Path, source: Path, out: Path) -> list:
         return self.compiler(include) + ["-E", str(source), "-o", str(out)]
@@ -1688,13 +1749,15 @@ class Builder:
             obj = work / name.replace(".cpp", ".o")
             preprocessed = work / name.replace(".cpp", ".ii")
             isolation = self.sandbox.isolation
-            jail = (lambda cmd: isolation.compiling(cmd, work, self.include)) if isolation else (lambda cmd: cmd)
+            header = self.kit.precompiled(stage)
+            jail = (lambda cmd: isolation.compiling(cmd, work, self.include, header and header.parent)) \
+                if isolation else (lambda cmd: cmd)
             try:
                 self.sandbox.run(jail(self.kit.preprocess_command(self.include, work / name, preprocessed)),
                                  slot=slot, cwd=work, timeout=budget, memory=COMPILE_MEMORY,
                                  stdout=subprocess.DEVNULL, fsize=COMPILE_OUTPUT)
                 budget = min(self.compile_timeout, self.deadline.left())
-                code, _ = self.sandbox.run(jail(self.kit.compile_command(self.include, work / name, obj)),
+                code, _ = self.sandbox.run(jail(self.kit.compile_command(self.include, work / name, obj, header)),
                                            slot=slot, cwd=work, timeout=budget,
                                            memory=COMPILE_MEMORY, stdout=log_fd, fsize=COMPILE_OUTPUT)
             finally:
@@ -1729,7 +1792,7 @@ class Builder:
             self.sandbox.release(slot)
 
     def allowed(self, real: str) -> bool:
-        roots = [str(self.shared)] + self.system
+        roots = [str(self.shared), os.path.realpath(PRECOMPILED)] + self.system
         return any(real == r or real.startswith(r.rstrip("/") + "/") for r in roots)
 
     def link(self, stage: str, tests: str, objects: list, exe: Path, reference: list = ()) -> str:
@@ -1753,6 +1816,35 @@ class Builder:
                  f"header's exact signature?)" for m in missing]
         lines += [f"defined twice: {t}" for t in twice]
         return "\n".join(lines) or "the lab did not link"
+
+
+# Where the precompiled framework headers live (Kit.precompiled()): one folder per user of the
+# grader, readable by every user, writable by that user alone.
+PRECOMPILED = Path("/var/tmp" if os.path.isdir("/var/tmp") else tempfile.gettempdir()) / f"physlab-pch-{os.geteuid()}"
+UNUSED_PRECOMPILED = 2 * 86400  # seconds unused after which another build's headers are removed
+
+
+def precompiled_folder():
+    """PRECOMPILED, made if needed; None unless it is ours and no one else may write to it (a
+    header planted there would compile into every submission)."""
+    try:
+        PRECOMPILED.mkdir(mode=0o755, exist_ok=True)
+        info = os.lstat(PRECOMPILED)
+    except OSError:
+        return None
+    if not stat.S_ISDIR(info.st_mode) or info.st_uid != os.geteuid() or info.st_mode & 0o022:
+        return None
+    return PRECOMPILED
+
+
+def prune_precompiled(folder: Path) -> None:
+    """Removes the headers of builds no grade has used for UNUSED_PRECOMPILED (each is ~120 MB)."""
+    for entry in folder.iterdir():
+        try:
+            if time.time() - entry.stat().st_mtime > UNUSED_PRECOMPILED:
+                shutil.rmtree(entry, ignore_errors=True)
+        except OSError:
+            pass
 
 
 def open_folder(root: Path, parts: tuple) -> int:
@@ -2065,8 +2157,10 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
         # Every visible test first; hidden tests only after every process of those runs is gone
         # and their files removed, so no student process can carry a hidden test's text into a
         # visible output.
+        phases = {"build": time.monotonic() - start}  # seconds, in results.json's extra_data
         make_homes(sandbox, shared)
         run_cases(sandbox, visible_jobs, args.seed, args.timeout, deadline, private, shared, workers)
+        phases["visible tests"] = time.monotonic() - start - sum(phases.values())
         sandbox.finish()
         jobs, copies = [], {}
         for program, case in hidden_jobs:
@@ -2076,12 +2170,14 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
         make_homes(sandbox, shared)
         run_cases(sandbox, jobs, args.seed, args.timeout, deadline, private, shared, workers)
         sandbox.finish()
+        phases["hidden tests"] = time.monotonic() - start - sum(phases.values())
         ungraded = [c for r in results for c in r.tests if c.status == "not graded"]
         if ungraded:
             raise GradingFailure(f"{len(ungraded)} tests could not start the sandbox of the submitted "
                                  f"code ({ungraded[0].output or ungraded[0].name})")
         text = report(results, args.seed, title)
         data = gradescope_json(results, time.monotonic() - start)
+        data["extra_data"] = {"seconds": {k: round(v, 2) for k, v in phases.items()}}
         write_outputs(out, text, data)
     except SubmissionError as error:  # the submission's own fault: a score of 0 that says why
         sandbox.finish()

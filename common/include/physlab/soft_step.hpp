@@ -46,6 +46,11 @@
 
 namespace physlab {
 
+namespace remote {
+template <int>
+struct Access;  // the grader's wire (tests/support/remote): what crosses to a grading worker
+}  // namespace remote
+
 /// The soft-constraint coefficients of one substep (see the file's formula).
 struct SoftCoefficients {
   double bias_rate = 0.0;      ///< \f$\gamma_b\f$, separation to velocity [1/s], >= 0
@@ -191,6 +196,8 @@ class SoftStepSolver : public RestingContactSolver {
     }
   };
   void sweep(double h_s, bool relax);
+  template <int>
+  friend struct remote::Access;  // in a grade, solve() runs in the worker: the state crosses with it
 
   SoftStepSettings settings_;
   SoftCoefficients soft_, soft_fixed_;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "physlab/rigid.hpp"
+#include "physlab/soft_step.hpp"
 #include "wire.hpp"
 
 namespace physlab::remote {
@@ -28,6 +29,17 @@ struct Access<0> {
     f(system.gravity_);
     f(system.renormalize_);
   }
+  // What solve() leaves for placeBodies(); its points and sweep order are rebuilt every step
+  template <class F>
+  static void visit(SoftStepSolver& solver, F&& f) {
+    f(solver.settings_);
+    f(solver.soft_);
+    f(solver.soft_fixed_);
+    f(solver.motion_);
+    f(solver.dq_);
+    f(solver.moved_);
+  }
+  static SoftStepSolver blank(std::common_type<SoftStepSolver>) { return SoftStepSolver(SoftStepSettings{}); }
   static RigidBody blank(std::common_type<RigidBody>) { return RigidBody(1.0, Mat3::Identity()); }
   static RigidBodySystem blank(std::common_type<RigidBodySystem>) {
     return RigidBodySystem(RigidBody(1.0, Mat3::Identity()));

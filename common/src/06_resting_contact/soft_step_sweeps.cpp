@@ -1,0 +1,153 @@
+// Lab 6 framework: the soft step's step. It prepares each point once per step, then runs the
+// substeps with the students' softCoefficients() and softNormalImpulse(), and keeps each body's
+// motion for placeBodies() (soft_step.cpp).
+//
+// In a grade this file runs in the worker, beside the submitted functions it calls (IN_WORKER in
+// CMakeLists.txt; docs/grading.md, "Where submitted code runs"): the sweeps call
+// softNormalImpulse() once per point, per sweep, per substep, some 10^5 times a second of a
+// stack, which across the wire would cost a pipe round trip each.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <tuple>
+
+#include "physlab/error.hpp"
+#include "physlab/rigid.hpp"
+#include "physlab/soft_step.hpp"
+
+namespace physlab {
+
+int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
+                          const std::vector<int>& resting, const std::vector<BodyDescription>& /*descriptions*/,
+                          const std::vector<BodyState>& /*states*/, const Vec3& gravity, double h) {
+  const int n = settings_.substeps;
+  const double h_s = h / n;
+  soft_ = softCoefficients(settings_.contact_hertz, settings_.damping_ratio, h_s);
+  soft_fixed_ = softCoefficients(settings_.fixed_hertz_scale * settings_.contact_hertz, settings_.damping_ratio, h_s);
+
+  // Gravity, applied by the World over h, comes back per substep; no motion yet
+  dq_.assign(bodies.size(), Quat::Identity());
+  motion_.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const ContactBody& body = bodies[i];
+    motion_[i] = {body.inv_mass > 0.0 ? Vec3(body.v - h * gravity) : body.v, body.omega, body.inv_mass, Vec3::Zero(),
+                  Vec3::Zero()};
+  }
+
+  // The sweep order: highest point first (along -gravity), or the World's
+  order_.resize(resting.size());
+  for (std::size_t k = 0; k < resting.size(); ++k) {
+    const double height = settings_.top_down ? contacts[static_cast<std::size_t>(resting[k])].p.dot(gravity) : 0.0;
+    order_[k] = {height, resting[k]};
+  }
+  if (settings_.top_down) std::stable_sort(order_.begin(), order_.end());
+
+  // Points: anchors, Jacobian parts, effective masses; the warm start is last step's impulse per substep
+  points_.resize(resting.size());
+  for (std::size_t k = 0; k < resting.size(); ++k) {
+    const Contact& c = contacts[static_cast<std::size_t>(order_[k].second)];
+    Point& pt = points_[k];
+    const ContactBody& A = bodies[static_cast<std::size_t>(c.a)];
+    const ContactBody& B = bodies[static_cast<std::size_t>(c.b)];
+    pt.a = static_cast<std::size_t>(c.a);
+    pt.b = static_cast<std::size_t>(c.b);
+    pt.r_a = c.p - A.x;
+    pt.r_b = c.p - B.x;
+    pt.d[0] = c.n;
+    std::tie(pt.d[1], pt.d[2]) = tangentPair(c.n);
+    for (int i = 0; i < 3; ++i) {
+      pt.ang_a[i] = pt.r_a.cross(pt.d[i]);
+      pt.ang_b[i] = pt.r_b.cross(pt.d[i]);
+      pt.turn_a[i] = A.I_inv_world * pt.ang_a[i];
+      pt.turn_b[i] = B.I_inv_world * pt.ang_b[i];
+      const double K = A.inv_mass + B.inv_mass + pt.ang_a[i].dot(pt.turn_a[i]) + pt.ang_b[i].dot(pt.turn_b[i]);
+      if (!(K > 0.0)) {
+        throw InvalidInput("soft step: contact " + std::to_string(order_[k].second) + " has no moving body along row " +
+                           std::to_string(i));
+      }
+      pt.mass[i] = 1.0 / K;
+    }
+    pt.depth = c.depth;
+    pt.mu = c.mu;
+    pt.soft_fixed = A.inv_mass == 0.0 || B.inv_mass == 0.0;
+    pt.bounce = c.kind == ContactKind::Colliding && c.epsilon > 0.0;
+    pt.target = -c.epsilon * c.v_rel_minus;
+    pt.pushed = 0.0;
+    pt.total = Vec3::Zero();
+    pt.lambda = Vec3(std::max(0.0, c.j), c.j_t.dot(pt.d[1]), c.j_t.dot(pt.d[2])) / n;
+    const double radius = pt.mu * pt.lambda(0), length = pt.lambda.tail<2>().norm();
+    if (length > radius) pt.lambda.tail<2>() *= length > 0.0 ? radius / length : 0.0;
+  }
+
+  // The substeps: gravity, warm start, soft sweeps, positions, relax sweeps
+  const Vec3 dv = h_s * gravity;
+  for (int step = 0; step < n; ++step) {
+    for (Motion& body : motion_) {
+      if (body.inv_mass > 0.0) body.v += dv;
+    }
+    for (const Point& pt : points_) pt.apply(motion_[pt.a], motion_[pt.b], pt.lambda, 0);
+    for (int i = 0; i < settings_.solve_iterations; ++i) sweep(h_s, false);
+    for (std::size_t i = 0; i < motion_.size(); ++i) {
+      Motion& body = motion_[i];
+      if (!(body.inv_mass > 0.0)) continue;
+      body.dx += h_s * body.v;
+      if (body.omega.isZero()) continue;
+      body.dtheta += h_s * body.omega;
+      dq_[i] = exponentialUpdate(dq_[i], body.omega, h_s);
+    }
+    for (int r = 0; r < settings_.relax_iterations; ++r) sweep(h_s, true);
+    for (Point& pt : points_) {
+      pt.total += pt.lambda;
+      pt.pushed = std::max(pt.pushed, pt.lambda(0));
+    }
+  }
+
+  // Restitution: a colliding point that was pushed aims at its bounce, once
+  for (Point& pt : points_) {
+    if (!pt.bounce || pt.pushed <= 0.0) continue;
+    Motion &A = motion_[pt.a], &B = motion_[pt.b];
+    const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (pt.velocity(A, B, 0) - pt.target));
+    const double change = lambda - pt.lambda(0);
+    pt.apply(A, B, 0, change);
+    pt.lambda(0) = lambda;
+    pt.total(0) += change;
+  }
+
+  for (std::size_t k = 0; k < resting.size(); ++k) {
+    Contact& c = contacts[static_cast<std::size_t>(order_[k].second)];
+    const Point& pt = points_[k];
+    c.j = pt.total(0);
+    c.j_t = pt.total(1) * pt.d[1] + pt.total(2) * pt.d[2];
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i].v = motion_[i].v;
+    bodies[i].omega = motion_[i].omega;
+  }
+  moved_ = true;
+  return n * (settings_.solve_iterations + settings_.relax_iterations);
+}
+
+// One Gauss-Seidel sweep over the points: the normal row by softNormalImpulse() at the separation
+// now, then friction on the disc of radius mu lambda_n
+void SoftStepSolver::sweep(double h_s, bool relax) {
+  for (Point& pt : points_) {
+    Motion &A = motion_[pt.a], &B = motion_[pt.b];
+    const double v_n = pt.velocity(A, B, 0);
+    // The anchors moved with their bodies: the gap now, to first order in the rotation
+    const double s = -pt.depth + pt.d[0].dot(A.dx - B.dx) + pt.ang_a[0].dot(A.dtheta) - pt.ang_b[0].dot(B.dtheta);
+    const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, s, pt.mass[0], pt.soft_fixed ? soft_fixed_ : soft_,
+                                              h_s, settings_.max_push, relax);
+    pt.apply(A, B, 0, lambda_n - pt.lambda(0));
+    pt.lambda(0) = lambda_n;
+    // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc
+    Eigen::Vector2d lambda_T(pt.lambda(1) - pt.mass[1] * pt.velocity(A, B, 1),
+                             pt.lambda(2) - pt.mass[2] * pt.velocity(A, B, 2));
+    const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
+    if (length2 > radius * radius) lambda_T *= radius > 0.0 ? radius / std::sqrt(length2) : 0.0;
+    pt.apply(A, B, Vec3(0.0, lambda_T(0) - pt.lambda(1), lambda_T(1) - pt.lambda(2)), 1);
+    pt.lambda(1) = lambda_T(0);
+    pt.lambda(2) = lambda_T(1);
+  }
+}
+
+}  // namespace physlab
