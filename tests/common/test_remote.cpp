@@ -5,9 +5,11 @@
 #include "physlab/lcp.hpp"
 #include "physlab/resting.hpp"
 #include "physlab/soft_step.hpp"
+#include "physlab/springs.hpp"
 #include "physlab/timewarp.hpp"
 #include "physlab/world.hpp"
 #include "remote/remote.hpp"
+#include "remote/state.hpp"
 #include "support.hpp"
 
 namespace {
@@ -179,5 +181,103 @@ TEST_CASE("remote wire: an exception crosses as its family with its message", "[
     CHECK(family == Family::InvalidInput);
     CHECK(what == "invalid input: too late");
     CHECK(in.remaining() == 0);
+  }
+}
+
+namespace {
+
+// A 3 x 3 cloth with a pinned corner, its workspace's vectors filled with seeded values.
+SpringNetwork smallCloth() {
+  SpringNetwork net = makeCloth(3, 3, 1.0, 1.0, 0.5, test::uniform(100.0, 1000.0), test::uniform(0.0, 2.0));
+  net.masses[0] = std::numeric_limits<double>::infinity();
+  return net;
+}
+
+void fillVectors(ImplicitWorkspace& ws) {
+  for (VecX* v : {&ws.b, &ws.Kv, &ws.dv, &ws.Adv}) *v = VecX::Random(v->size());
+}
+
+}  // namespace
+
+TEST_CASE("remote wire: a spring system crosses as its network, a workspace as its pattern and vectors", "[common]") {
+  const SpringNetwork net = smallCloth();
+  const SpringSystem sys(net);
+  SECTION("the system is built anew from its network") {
+    const auto bytes = bytesOf(sys);
+    CHECK(bytes == bytesOf(net));
+    SpringSystem back = remote::blank<SpringSystem>();
+    Reader in(bytes.data(), bytes.size());
+    remote::get(in, back);
+    CHECK(in.remaining() == 0);
+    CHECK(bytesOf(back.network()) == bytes);
+    CHECK(back.inverseMasses() == sys.inverseMasses());
+    CHECK(back.implicitWorkspace().A.count() == sys.count());
+  }
+  SECTION("a blank workspace (the worker's) is laid out for the pattern that comes, with its vectors") {
+    ImplicitWorkspace& ws = sys.implicitWorkspace();
+    fillVectors(ws);
+    const auto bytes = bytesOf(ws);
+    ImplicitWorkspace back = remote::blank<ImplicitWorkspace>();
+    Reader in(bytes.data(), bytes.size());
+    remote::get(in, back);
+    CHECK(in.remaining() == 0);
+    CHECK(bytesOf(back) == bytes);
+    CHECK(back.dv == ws.dv);
+    // The same blocks added spring by spring make the same matrix: the same pairs, transposes and
+    // shared blocks.
+    for (SpringMatrix* A : {&ws.A, &back.A}) {
+      A->setZero();
+      for (Index i = 0; i < A->count(); ++i) A->addDiagonal(i, (10.0 + static_cast<double>(i)) * Mat3::Identity());
+      for (std::size_t k = 0; k < net.springs.size(); ++k) A->addSpring(k, static_cast<double>(k + 1) * Mat3::Ones());
+    }
+    CHECK(back.A.toDense() == ws.A.toDense());
+    VecX x = VecX::Zero(ws.b.size());
+    CHECK(back.A.solveLDLT(ws.b, x));
+    // Read again into a workspace of that pattern, it keeps its layout and takes the vectors.
+    fillVectors(ws);
+    const auto second = bytesOf(ws);
+    Reader in_again(second.data(), second.size());
+    remote::get(in_again, back);
+    CHECK(back.Adv == ws.Adv);
+    CHECK(back.A.toDense() == ws.A.toDense());
+  }
+}
+
+TEST_CASE("remote wire: a malformed workspace is refused", "[common]") {
+  const SpringNetwork net = smallCloth();
+  const SpringSystem sys(net);
+  ImplicitWorkspace& ws = sys.implicitWorkspace();
+  fillVectors(ws);
+  const Index n = sys.count();
+  const auto pairs = remote::Access<0>::springPairs(ws.A);
+  auto message = [&](Index particles, const remote::Access<0>::SpringPairs& springs, Index entries) {
+    Writer out;
+    remote::put(out, particles);
+    remote::put(out, springs);
+    for (int v = 0; v < 4; ++v) remote::put(out, VecX(VecX::Zero(entries)));
+    return out.buffer();
+  };
+  auto refused = [&](const std::vector<char>& bytes) {
+    ImplicitWorkspace into(net);
+    Reader in(bytes.data(), bytes.size());
+    CHECK_THROWS_AS(remote::get(in, into), WireError);
+  };
+  SECTION("every truncation of a valid reply") {
+    const auto bytes = bytesOf(ws);
+    for (std::size_t size = 0; size < bytes.size(); ++size) {
+      refused(std::vector<char>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(size)));
+    }
+  }
+  SECTION("vectors of another size, springs outside the particles, and counts the message cannot hold") {
+    const auto valid = message(n, pairs, 3 * n);
+    ImplicitWorkspace into(net);
+    Reader in(valid.data(), valid.size());
+    CHECK_NOTHROW(remote::get(in, into));
+    refused(message(n, pairs, 3 * n - 3));
+    refused(message(n, {{0, n}}, 3 * n));
+    refused(message(n, {{2, 2}}, 3 * n));
+    refused(message(n, {{-1, 1}}, 3 * n));
+    refused(message(0, {}, 0));
+    refused(message(Index(1) << 40, pairs, 3 * n));
   }
 }

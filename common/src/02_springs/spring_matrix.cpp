@@ -22,6 +22,10 @@ Index valuePosition(const Eigen::SparseMatrix<double>& m, Index row, Index col) 
 
 SpringMatrix::SpringMatrix(const SpringNetwork& network) {
   validate(network);
+  build(network);
+}
+
+void SpringMatrix::build(const SpringNetwork& network) {
   const Index n = network.masses.size();
   const std::size_t particles = static_cast<std::size_t>(n);
   diagonal_.assign(particles, Mat3::Zero());
@@ -36,6 +40,7 @@ SpringMatrix::SpringMatrix(const SpringNetwork& network) {
   std::sort(keyed.begin(), keyed.end(), [](const auto& l, const auto& r) {
     return l.first.i != r.first.i ? l.first.i < r.first.i : l.first.j < r.first.j;
   });
+  pairs_.clear();
   slots_.resize(network.springs.size());
   for (const auto& [pair, k] : keyed) {
     if (pairs_.empty() || pairs_.back().i != pair.i || pairs_.back().j != pair.j) pairs_.push_back(pair);
@@ -61,6 +66,8 @@ SpringMatrix::SpringMatrix(const SpringNetwork& network) {
   lower_.resize(3 * n, 3 * n);
   lower_.setFromTriplets(triplets.begin(), triplets.end());
   lower_.makeCompressed();
+  analysed_ = false;  // LDLT's analysis was of the pattern this replaces
+  diagonal_entries_.clear();
   diagonal_entries_.reserve(6 * particles);
   for (Index i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
@@ -69,6 +76,7 @@ SpringMatrix::SpringMatrix(const SpringNetwork& network) {
       }
     }
   }
+  off_diagonal_entries_.clear();
   off_diagonal_entries_.reserve(9 * pairs_.size());
   for (const Pair& pair : pairs_) {
     for (int c = 0; c < 3; ++c) {

@@ -1,14 +1,20 @@
 // The state of the framework's classes that cross the wire (tests/support/remote): a class that is
 // not an aggregate lists its members here, and how to make a blank one to read them into. A
 // class whose student functions are graded remotely (rigid.hpp: RigidBodySystem) befriends
-// remote::Access, so that these lists, and the worker's table, reach its private members.
+// remote::Access, so that these lists, and the worker's table, reach its private members. Lab 2's
+// SpringSystem and ImplicitWorkspace cannot be read member by member (they own a workspace, a
+// sparse factorisation): they have codecs of their own at the end.
 #pragma once
 
+#include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
+#include "physlab/error.hpp"
 #include "physlab/rigid.hpp"
 #include "physlab/soft_step.hpp"
+#include "physlab/springs.hpp"
 #include "wire.hpp"
 
 namespace physlab::remote {
@@ -44,6 +50,41 @@ struct Access<0> {
   static RigidBodySystem blank(std::common_type<RigidBodySystem>) {
     return RigidBodySystem(RigidBody(1.0, Mat3::Identity()));
   }
+  // A valid network has a particle: the blanks below are built for one.
+  static SpringNetwork oneParticle() {
+    SpringNetwork network;
+    network.masses = VecX::Ones(1);
+    network.rest_positions = Mat3X::Zero(3, 1);
+    return network;
+  }
+  static SpringSystem blank(std::common_type<SpringSystem>) { return SpringSystem(oneParticle()); }
+  static ImplicitWorkspace blank(std::common_type<ImplicitWorkspace>) { return ImplicitWorkspace(oneParticle()); }
+
+  /// The pattern of a spring matrix: each spring's particles (a, b), as its network has them.
+  using SpringPairs = std::vector<std::pair<Index, Index>>;
+  static SpringPairs springPairs(const SpringMatrix& A) {
+    SpringPairs pairs;
+    pairs.reserve(A.slots_.size());
+    for (const SpringMatrix::Slot& slot : A.slots_) {
+      const SpringMatrix::Pair& pair = A.pairs_[slot.pair];
+      pairs.push_back(slot.transposed ? std::pair{pair.j, pair.i} : std::pair{pair.i, pair.j});
+    }
+    return pairs;
+  }
+  /// Lays `A` out for `n` particles joined as `pairs` (checked here: they come off the wire).
+  static void rebuild(SpringMatrix& A, Index n, const SpringPairs& pairs) {
+    SpringNetwork network;
+    network.masses = VecX::Ones(n);
+    network.springs.reserve(pairs.size());
+    for (const auto& [a, b] : pairs) {
+      if (a < 0 || a >= n || b < 0 || b >= n || a == b) {
+        throw WireError("a spring (" + std::to_string(a) + ", " + std::to_string(b) + ") among " +
+                        std::to_string(n) + " particles");
+      }
+      network.springs.push_back({a, b, 0.0, 0.0, 0.0});
+    }
+    A.build(network);
+  }
 };
 
 /// A blank T to read into: T{} for what has a default constructor, Access<0>::blank otherwise.
@@ -73,6 +114,54 @@ struct Codec<T, std::enable_if_t<HasState<T>::value>> {
   }
   static void get(Reader& in, T& value) {
     Access<0>::visit(value, [&](auto& member) { remote::get(in, member); });
+  }
+};
+
+/// A spring system crosses as its network; the reader builds the system anew from it (inverse
+/// masses, its own workspace), as the checker built it.
+template <>
+struct Codec<SpringSystem> {
+  static void put(Writer& out, const SpringSystem& value) { remote::put(out, value.network()); }
+  static void get(Reader& in, SpringSystem& value) {
+    SpringNetwork network;
+    remote::get(in, network);
+    try {
+      value = SpringSystem(std::move(network));
+    } catch (const InvalidInput& why) {
+      throw WireError(std::string("a spring network that is not valid: ") + why.what());
+    }
+  }
+};
+
+/// An implicit step's workspace crosses as its matrix's pattern and its vectors (dv is CG's warm
+/// start). The matrix's values do not cross: implicitEulerUpdate() refills them from zero every
+/// step, and no caller reads them afterwards. A workspace laid out for another pattern (the
+/// worker's blank) is laid out anew for the one that comes; each vector must then have 3n entries.
+template <>
+struct Codec<ImplicitWorkspace> {
+  static void put(Writer& out, const ImplicitWorkspace& value) {
+    remote::put(out, value.A.count());
+    remote::put(out, Access<0>::springPairs(value.A));
+    for (const VecX* v : {&value.b, &value.Kv, &value.dv, &value.Adv}) remote::put(out, *v);
+  }
+  static void get(Reader& in, ImplicitWorkspace& value) {
+    Index n = 0;
+    Access<0>::SpringPairs pairs;
+    remote::get(in, n);
+    remote::get(in, pairs);
+    // The four vectors of 3n entries that follow bound n before anything is sized by it.
+    constexpr std::size_t kBytesPerParticle = 4 * 3 * sizeof(double);
+    if (n < 1 || static_cast<std::size_t>(n) > in.remaining() / kBytesPerParticle) {
+      throw WireError("a workspace of " + std::to_string(n) + " particles");
+    }
+    if (n != value.A.count() || pairs != Access<0>::springPairs(value.A)) Access<0>::rebuild(value.A, n, pairs);
+    for (VecX* v : {&value.b, &value.Kv, &value.dv, &value.Adv}) {
+      remote::get(in, *v);
+      if (v->size() != 3 * n) {
+        throw WireError("a workspace vector of " + std::to_string(v->size()) + " entries for " +
+                        std::to_string(n) + " particles");
+      }
+    }
   }
 };
 
