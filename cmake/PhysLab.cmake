@@ -109,7 +109,8 @@ function(physlab_add_common)
   # The wire between a checker and its worker (physlab_add_remote), Linux only.
   set(worker_filter "")
   if(PHYSLAB_REMOTE)
-    add_library(physlab_remote OBJECT "${PHYSLAB_ROOT}/tests/support/remote/remote.cpp")
+    add_library(physlab_remote OBJECT "${PHYSLAB_ROOT}/tests/support/remote/remote.cpp"
+                                      "${PHYSLAB_ROOT}/tests/support/remote/handles.cpp")
     target_include_directories(physlab_remote PUBLIC "${PHYSLAB_ROOT}/tests/support")
     target_link_libraries(physlab_remote PUBLIC physlab_common)
     physlab_cxx(physlab_remote)

@@ -44,6 +44,20 @@ T blank() {
   }
 }
 
+/// What the worker reads an argument of type T into: by default a T, read in place; handles.hpp
+/// gives the types that are views or handles a holder of what they refer to. *arg is the argument
+/// the student's function gets, back() writes it into the reply.
+template <class T, class = void>
+class Arg {
+ public:
+  explicit Arg(Reader& in) : value_(blank<T>()) { get(in, value_); }
+  T& operator*() { return value_; }
+  void back(Writer& out) const { put(out, value_); }
+
+ private:
+  T value_;
+};
+
 struct IgnoreMember {
   template <class M>
   void operator()(M&) const {}
