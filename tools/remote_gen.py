@@ -89,6 +89,8 @@ def parameter(text: str, name_of: str) -> tuple:
     name, kind_text = m.group(1), text[:m.start()].strip()
     if re.fullmatch(r"Eigen::Ref<\s*VecX\s*>", kind_text):
         return "ref", "VecX", name  # a writable view of a vector: its entries go in and come back
+    if kind_text == "const System&":
+        return "system", "System", name  # a copy or a handle; the evaluations made on it come back
     if kind_text == "Points":
         return "ref", "Points", name  # a writable 3 x n view: its entries go in and come back
     if "Eigen::Ref" in kind_text or "std::function" in kind_text or "(" in kind_text:
@@ -135,7 +137,8 @@ def generate(stage_dir: Path) -> tuple:
         body.append("  call.send();")
         if owner and not const:
             body.append("  call.back(*this);")
-        body += [f"  call.{'backPointer' if k == 'pointer' else 'backInto' if k == 'ref' else 'back'}({n});"
+        body += [f"  remote::addEvaluations(call, {n});" if k == "system" else
+                 f"  call.{'backPointer' if k == 'pointer' else 'backInto' if k == 'ref' else 'back'}({n});"
                  for k, _, n in params if k != "in"]
         body.append(f"  {'return ' if ret != 'void' else ''}call.result<{ret}>();")
         body.append("}")
@@ -154,7 +157,7 @@ def generate(stage_dir: Path) -> tuple:
         arguments = ", ".join(f"{n}_given ? &{n} : nullptr" if k == "pointer" else f"*{n}" for k, _, n in params)
         back = ["self.back(out);"] if owner and not const else []
         for k, _, n in params:
-            if k in ("inout", "ref"):
+            if k in ("inout", "ref", "system"):
                 back.append(f"{n}.back(out);")
             elif k == "pointer":
                 back.append(f"remote::put(out, {n}_given); if ({n}_given) remote::put(out, {n});")

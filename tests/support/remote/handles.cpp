@@ -2,6 +2,7 @@
 // worker's stand-ins that call back.
 #include "handles.hpp"
 
+#include <memory>
 #include <string>
 #include <type_traits>
 
@@ -282,6 +283,50 @@ std::shared_ptr<const Force> takeForce(Reader& in) {
   get(in, tag);
   if (tag == 0) return std::make_shared<RemoteForce>(in);
   return LabForces::take(in, tag);
+}
+
+void Codec<System>::put(Writer& out, const System& system) {
+  // Each is final: a match is the exact class.
+  if (const auto* oscillator = dynamic_cast<const HarmonicOscillator*>(&system)) {
+    remote::put(out, std::uint8_t{1});
+    remote::put(out, *oscillator);
+  } else if (const auto* kepler = dynamic_cast<const Kepler*>(&system)) {
+    remote::put(out, std::uint8_t{2});
+    remote::put(out, *kepler);
+  } else if (const auto* particles = dynamic_cast<const ParticleSystem*>(&system)) {
+    remote::put(out, std::uint8_t{3});
+    remote::put(out, *particles);
+  } else {
+    remote::put(out, std::uint8_t{0});
+    remote::put(out, lend(system));
+    remote::put(out, system.positionSize());
+    remote::put(out, system.velocitySize());
+    remote::put(out, system.positionRateIsVelocity());
+    remote::put(out, system.name());
+  }
+}
+
+Arg<System>::Arg(Reader& in) {
+  std::uint8_t kind = 0;
+  get(in, kind);
+  copy_ = kind != 0;
+  switch (kind) {
+    case 0: value_ = std::make_unique<RemoteSystem>(in); return;
+    case 1: value_ = std::make_unique<HarmonicOscillator>(Arg<HarmonicOscillator>::build(in)); return;
+    case 2: value_ = std::make_unique<Kepler>(Arg<Kepler>::build(in)); return;
+    case 3: value_ = std::make_unique<ParticleSystem>(*Arg<ParticleSystem>(in)); return;
+    default: throw WireError("a system of kind " + std::to_string(kind));
+  }
+}
+
+void Arg<System>::back(Writer& out) const { put(out, copy_ ? value_->forceEvaluations() : 0L); }
+
+void addEvaluations(Call& call, const System& system) {
+  long evaluations = 0;
+  call.back(evaluations);
+  // No call makes 2^40 evaluations; the bound keeps the checker's sum from overflowing.
+  if (evaluations < 0 || evaluations > (1L << 40)) throw WireError("a count of " + std::to_string(evaluations) + " force evaluations");
+  Access<0>::addEvaluations(system, evaluations);
 }
 
 Arg<ParticleSystem>::Arg(Reader& in) : value_(readValue<VecX>(in)) {

@@ -27,6 +27,7 @@
 #include "physlab/curl_noise.hpp"
 #include "physlab/neighbours.hpp"
 #include "physlab/particles.hpp"
+#include "physlab/scenes.hpp"
 #include "physlab/system.hpp"
 #include "remote.hpp"
 #include "state.hpp"
@@ -92,6 +93,14 @@ struct Parameters<Boids> {
   static std::tuple<double, double, double, double> of(const Boids& f) {
     return {f.radius, f.separation, f.alignment, f.cohesion};
   }
+};
+template <>
+struct Parameters<HarmonicOscillator> {
+  static std::tuple<double> of(const HarmonicOscillator& s) { return {s.omega}; }
+};
+template <>
+struct Parameters<Kepler> {
+  static std::tuple<double> of(const Kepler& s) { return {s.mu}; }
 };
 template <>
 struct Parameters<CurlNoise> {
@@ -180,16 +189,11 @@ class Arg<Eigen::Map<M>> {
 
 // ---- handles ----------------------------------------------------------------------------------------
 
-/// A System crosses as a handle, with its sizes and name.
+/// A System: the framework's own (HarmonicOscillator, Kepler, ParticleSystem) as data, which the
+/// worker evaluates without a callback; any other as a handle, with its sizes and name.
 template <>
 struct Codec<System> {
-  static void put(Writer& out, const System& system) {
-    remote::put(out, lend(system));
-    remote::put(out, system.positionSize());
-    remote::put(out, system.velocitySize());
-    remote::put(out, system.positionRateIsVelocity());
-    remote::put(out, system.name());
-  }
+  static void put(Writer& out, const System& system);
 };
 
 /// The worker's stand-in of a lent System: every derivative, Jacobian and projection is the
@@ -216,15 +220,23 @@ class RemoteSystem final : public System {
   std::string name_;
 };
 
+/// The worker's System: a copy, or a stand-in. back() writes the force evaluations made on a copy
+/// (those made through a stand-in were counted in the checker as they were made).
 template <>
 class Arg<System> {
  public:
-  explicit Arg(Reader& in) : value_(in) {}
-  const System& operator*() const { return value_; }
+  explicit Arg(Reader& in);
+  const System& operator*() const { return *value_; }
+  void back(Writer& out) const;
 
  private:
-  RemoteSystem value_;
+  std::unique_ptr<System> value_;
+  bool copy_ = false;
 };
+
+/// The checker's side of Arg<System>::back(): the evaluations the worker made on its copy are
+/// counted on `system`, as if they had been made here.
+void addEvaluations(Call& call, const System& system);
 
 /// The worker's stand-in of a lent Force (one of a ParticleSystem's that is not the lab's own).
 class RemoteForce final : public Force {

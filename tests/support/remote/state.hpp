@@ -28,6 +28,8 @@ struct Access<0> {
     f(system.gravity_);
     f(system.renormalize_);
   }
+  /// The force evaluations a worker made on its copy of `system` (handles.hpp).
+  static void addEvaluations(const System& system, long evaluations) { system.force_evaluations_ += evaluations; }
   static RigidBody blank(std::common_type<RigidBody>) { return RigidBody(1.0, Mat3::Identity()); }
   static RigidBodySystem blank(std::common_type<RigidBodySystem>) {
     return RigidBodySystem(RigidBody(1.0, Mat3::Identity()));
