@@ -10,10 +10,12 @@ namespace physlab::remote {
 
 namespace {
 
-// What the checker has lent during the current outermost call: a system or a force, never both.
+// What the checker has lent during the current outermost call: a system, or a force with the
+// number of particles of the system it acts in (the checker's code trusts a view's sizes).
 struct Lent {
   const System* system = nullptr;
   const Force* force = nullptr;
+  Index particles = 0;
 };
 
 std::vector<Lent>& lent() {
@@ -53,6 +55,7 @@ void answerSystem(const System& system, Method method, Reader& in, Writer& out) 
     case Method::Project: {
       auto X = readValue<VecX>(in);
       readAll(in);
+      if (X.size() != system.size()) throw WireError("a state of " + std::to_string(X.size()) + " entries to project");
       respond(out, [&] { system.project(X); }, [&] { put(out, X); });
       return;
     }
@@ -61,11 +64,22 @@ void answerSystem(const System& system, Method method, Reader& in, Writer& out) 
   throw WireError("a callback of method " + std::to_string(static_cast<int>(method)) + " on a system");
 }
 
-void answerForce(const Force& force, Method method, Reader& in, Writer& out) {
+// Reads a matrix of the size the callback's particles need.
+template <class M>
+M readSized(Reader& in, Index rows, Index cols, const char* what) {
+  auto value = readValue<M>(in);
+  if (value.rows() != rows || value.cols() != cols) throw WireError(std::string(what) + " of the wrong size");
+  return value;
+}
+
+void answerForce(const Force& force, Index n, Method method, Reader& in, Writer& out) {
   const Arg<ParticleView> s(in);
+  if ((*s).x.cols() != n || (*s).v.cols() != n || (*s).m.size() != n) {
+    throw WireError("a view of other than the " + std::to_string(n) + " particles the force acts on");
+  }
   switch (method) {
     case Method::Accumulate: {
-      auto F = readValue<Mat3X>(in);
+      auto F = readSized<Mat3X>(in, 3, n, "a force total");
       readAll(in);
       respond(out, [&] { force.accumulate(*s, Points(F.data(), 3, F.cols())); }, [&] { put(out, F); });
       return;
@@ -75,8 +89,8 @@ void answerForce(const Force& force, Method method, Reader& in, Writer& out) {
       respond(out, [&] { return force.potential(*s); }, [] {});
       return;
     case Method::AddJacobians: {
-      auto dF_dx = readValue<MatX>(in);
-      auto dF_dv = readValue<MatX>(in);
+      auto dF_dx = readSized<MatX>(in, 3 * n, 3 * n, "a Jacobian");
+      auto dF_dv = readSized<MatX>(in, 3 * n, 3 * n, "a Jacobian");
       readAll(in);
       respond(out, [&] { return force.addJacobians(*s, dF_dx, dF_dv); }, [&] {
         put(out, dF_dx);
@@ -143,9 +157,9 @@ void assign(View&& view, const Plain& value) {
 
 }  // namespace
 
-std::uint32_t lend(const System& system) { return lendEntry({&system, nullptr}); }
+std::uint32_t lend(const System& system) { return lendEntry({&system, nullptr, 0}); }
 
-std::uint32_t lend(const Force& force) { return lendEntry({nullptr, &force}); }
+std::uint32_t lend(const Force& force, Index particles) { return lendEntry({nullptr, &force, particles}); }
 
 void forgetHandles() { lent().clear(); }
 
@@ -161,7 +175,7 @@ void answerCallback(Reader& in, Writer& out) {
   if (entry.system) {
     answerSystem(*entry.system, method, in, out);
   } else {
-    answerForce(*entry.force, method, in, out);
+    answerForce(*entry.force, entry.particles, method, in, out);
   }
 }
 
@@ -270,10 +284,10 @@ using LabForces = ForceKinds<UniformGravity, NBodyGravity, ViscousDrag, DampedSp
 
 }  // namespace
 
-void putForce(Writer& out, const Force& force) {
+void putForce(Writer& out, const Force& force, Index particles) {
   if (LabForces::put(out, force)) return;
   put(out, std::uint8_t{0});
-  put(out, lend(force));
+  put(out, lend(force, particles));
   put(out, force.name());
   put(out, force.uniformAcceleration());
 }

@@ -48,9 +48,10 @@ enum class Method : std::uint8_t {
 
 // ---- checker side ---------------------------------------------------------------------------------
 
-/// Lends `system` (or `force`) until the outermost call in progress ends; returns its handle.
+/// Lends `system` (or `force`, acting on a system of `particles` particles) until the outermost
+/// call in progress ends; returns its handle.
 std::uint32_t lend(const System& system);
-std::uint32_t lend(const Force& force);
+std::uint32_t lend(const Force& force, Index particles);
 /// Forgets every handle (exchange(), when its outermost call ends).
 void forgetHandles();
 /// Runs the callback that `in` holds on the object it names and writes its answer as respond()
@@ -255,7 +256,7 @@ class RemoteForce final : public Force {
 };
 
 /// A force of a ParticleSystem: the lab's own classes as data, any other as a handle.
-void putForce(Writer& out, const Force& force);
+void putForce(Writer& out, const Force& force, Index particles);
 std::shared_ptr<const Force> takeForce(Reader& in);
 
 /// A ParticleSystem goes as its masses and its forces, in the order they were added.
@@ -264,7 +265,7 @@ struct Codec<ParticleSystem> {
   static void put(Writer& out, const ParticleSystem& system) {
     remote::put(out, system.masses());
     remote::put(out, static_cast<std::uint64_t>(system.forces().size()));
-    for (const auto& force : system.forces()) putForce(out, *force);
+    for (const auto& force : system.forces()) putForce(out, *force, system.count());
   }
 };
 
