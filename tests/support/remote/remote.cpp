@@ -361,8 +361,9 @@ namespace {
 const Entry* served = nullptr;
 std::uint32_t served_size = 0;
 
-// Answers one request; 0 when done, else the worker's exit status. Each request has its own
-// buffers: a nested one is answered while the entry that made the callback still reads its own.
+// Answers one request: 0 when answered, -1 when the checker has closed its end, else the worker's
+// exit status (a function the table does not have). Each request has its own buffers: a nested
+// one is answered while the entry that made the callback still reads its own.
 int serveRequest(const std::vector<char>& request) {
   Reader in(request.data(), request.size());
   std::uint32_t index = 0;
