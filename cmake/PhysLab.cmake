@@ -109,7 +109,8 @@ function(physlab_add_common)
   # The wire between a checker and its worker (physlab_add_remote), Linux only.
   set(worker_filter "")
   if(PHYSLAB_REMOTE)
-    add_library(physlab_remote OBJECT "${PHYSLAB_ROOT}/tests/support/remote/remote.cpp")
+    add_library(physlab_remote OBJECT "${PHYSLAB_ROOT}/tests/support/remote/remote.cpp"
+                                      "${PHYSLAB_ROOT}/tests/support/remote/handles.cpp")
     target_include_directories(physlab_remote PUBLIC "${PHYSLAB_ROOT}/tests/support")
     target_link_libraries(physlab_remote PUBLIC physlab_common)
     physlab_cxx(physlab_remote)
@@ -193,6 +194,12 @@ function(physlab_add_framework_tests)
   if(PHYSLAB_REMOTE)
     # Lab 2's codecs build spring systems and workspaces (state.hpp): its framework, with its reference.
     target_link_libraries(test_common PRIVATE physlab_remote physlab_02_springs_ref)
+    # The worker of test_remote.cpp's calls that cross processes and nest.
+    add_executable(physlab_test_worker "${PHYSLAB_ROOT}/tests/support/remote/test_worker.cpp")
+    target_link_libraries(physlab_test_worker PRIVATE physlab_remote physlab_01_particles_ref)
+    physlab_cxx(physlab_test_worker)
+    add_dependencies(test_common physlab_test_worker)
+    target_compile_definitions(test_common PRIVATE PHYSLAB_TEST_WORKER="$<TARGET_FILE:physlab_test_worker>")
   endif()
   physlab_test_unity(test_common)
   physlab_warnings(test_common)

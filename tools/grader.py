@@ -5,8 +5,8 @@ Runs every Catch2 test case in its own process group with a time limit and resou
 each verdict from an authenticated channel (tests/support/runner.cpp) rather than from anything the
 test prints, and writes a readable report plus Gradescope's results.json. `grade` compiles a
 submission's lab files apart from the instructor's tree (in bubblewrap where allowed), checks what
-the objects define, and links them with the instructor's prebuilt objects (Labs 1, 2, 4) or into a
-sandboxed worker that the instructor's checker calls (Labs 3, 5, 6: Isolation, Program), running
+the objects define, and links them with the instructor's prebuilt objects (Lab 4) or into a
+sandboxed worker that the instructor's checker calls (Labs 1, 2, 3, 5, 6: Isolation, Program), running
 everything as this run's own identities when run as root. The design and its limits are on the
 Grading page (docs/grading.md).
 """

@@ -2,12 +2,16 @@
 // was, and what a hostile worker sends is refused with an error, never read past its end.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
+
 #include "physlab/lcp.hpp"
 #include "physlab/resting.hpp"
 #include "physlab/soft_step.hpp"
 #include "physlab/springs.hpp"
 #include "physlab/timewarp.hpp"
 #include "physlab/world.hpp"
+#include "physlab/scenes.hpp"
+#include "remote/handles.hpp"
 #include "remote/remote.hpp"
 #include "remote/state.hpp"
 #include "support.hpp"
@@ -53,6 +57,54 @@ Contact randomContact() {
   c.r_b = test::randomVec3(1.0);
   c.K_matrix = test::randomRotation();
   return c;
+}
+
+// A system of the tests' own (the worker cannot rebuild it): p-dot = -q, and when `nested`, -2q
+// computed by the worker's `twice` (tests/support/remote/test_worker.cpp) while the worker waits
+// for this callback's answer.
+class Callable final : public System {
+ public:
+  explicit Callable(bool nested = false) : nested_(nested) {}
+  Index positionSize() const override { return 1; }
+  Index velocitySize() const override { return 1; }
+  std::string name() const override { return "callable"; }
+
+ protected:
+  void computePositionRate(const VecX& X, Eigen::Ref<VecX> qdot) const override { qdot[0] = X[1]; }
+  void computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const override {
+    if (!nested_) {
+      pdot[0] = -X[0];
+      return;
+    }
+    remote::Call call(1, "twice");
+    call.in(X[0]);
+    call.send();
+    pdot[0] = -call.result<double>();
+  }
+
+ private:
+  bool nested_;
+};
+
+// The handle a system crosses as: the worker's view of the request's first bytes.
+std::uint32_t handleOf(const System& system) {
+  Writer out;
+  remote::put(out, system);
+  Reader in(out.buffer().data(), out.buffer().size());
+  std::uint8_t kind = 1;
+  std::uint32_t handle = 0;
+  remote::get(in, kind);
+  remote::get(in, handle);
+  REQUIRE(kind == 0);
+  return handle;
+}
+
+std::vector<char> callbackOf(std::uint32_t handle, remote::Method method, const VecX& X) {
+  Writer out;
+  remote::put(out, handle);
+  remote::put(out, method);
+  remote::put(out, X);
+  return out.buffer();
 }
 
 }  // namespace
@@ -279,5 +331,98 @@ TEST_CASE("remote wire: a malformed workspace is refused", "[common]") {
     refused(message(n, {{-1, 1}}, 3 * n));
     refused(message(0, {}, 0));
     refused(message(Index(1) << 40, pairs, 3 * n));
+
+TEST_CASE("remote callbacks: a lent system answers through its public, counting methods", "[common]") {
+  remote::forgetHandles();
+  const Callable system;
+  const std::uint32_t handle = handleOf(system);
+  const VecX X = (VecX(2) << 3.0, -1.0).finished();
+  const auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
+  Reader in(callback.data(), callback.size());
+  Writer answer;
+  remote::answerCallback(in, answer);
+  Reader back(answer.buffer().data(), answer.buffer().size());
+  remote::Ending ending{};
+  VecX rate;
+  remote::get(back, ending);
+  remote::get(back, rate);
+  CHECK(ending == remote::Ending::Returned);
+  CHECK(rate == VecX::Constant(1, -3.0));
+  CHECK(back.remaining() == 0);
+  CHECK(system.forceEvaluations() == 1);
+
+  SECTION("an exception of the system's crosses back as its family, with its message") {
+    const auto wrong = callbackOf(handle, remote::Method::VelocityRate, VecX::Zero(3));
+    Reader wrong_in(wrong.data(), wrong.size());
+    Writer thrown;
+    remote::answerCallback(wrong_in, thrown);
+    Reader thrown_back(thrown.buffer().data(), thrown.buffer().size());
+    remote::get(thrown_back, ending);
+    remote::get(thrown_back, rate);
+    remote::Family family{};
+    remote::get(thrown_back, family);
+    CHECK(ending == remote::Ending::Threw);
+    CHECK(family == remote::Family::InvalidInput);
+  }
+  remote::forgetHandles();
+}
+
+TEST_CASE("remote callbacks: only what the checker lent during the call is reached", "[common]") {
+  remote::forgetHandles();
+  const Callable system;
+  const std::uint32_t handle = handleOf(system);
+  const VecX X = VecX::Zero(2);
+  Writer answer;
+  SECTION("a handle never lent") {
+    const auto callback = callbackOf(handle + 1, remote::Method::VelocityRate, X);
+    Reader in(callback.data(), callback.size());
+    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
+  }
+  SECTION("a handle of a call that has ended") {
+    remote::forgetHandles();
+    const auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
+    Reader in(callback.data(), callback.size());
+    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
+  }
+  SECTION("a method no system has") {
+    const auto callback = callbackOf(handle, remote::Method::Potential, X);
+    Reader in(callback.data(), callback.size());
+    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
+  }
+  SECTION("bytes past the arguments") {
+    auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
+    callback.push_back(0);
+    Reader in(callback.data(), callback.size());
+    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
+  }
+  CHECK(system.forceEvaluations() == 0);
+  remote::forgetHandles();
+}
+
+TEST_CASE("remote callbacks: across processes, a callback's code may call the worker again", "[common]") {
+  ::setenv("PHYSLAB_WORKER", PHYSLAB_TEST_WORKER, 1);
+  const auto velocityRate = [](const System& system, const VecX& X) {
+    remote::Call call(0, "velocityRate");
+    call.in(system);
+    call.in(X);
+    call.send();
+    remote::addEvaluations(call, system);
+    return call.result<VecX>();
+  };
+  const VecX X = (VecX(2) << 3.0, -1.0).finished();
+  SECTION("a handle: one callback, counted in the checker") {
+    const Callable system;
+    CHECK(velocityRate(system, X) == VecX::Constant(1, -3.0));
+    CHECK(system.forceEvaluations() == 1);
+  }
+  SECTION("a nested request while the worker waits for the callback's answer") {
+    const Callable system(true);
+    CHECK(velocityRate(system, X) == VecX::Constant(1, -6.0));
+    CHECK(system.forceEvaluations() == 1);
+  }
+  SECTION("a framework system crosses as a copy; its evaluations are counted back") {
+    const HarmonicOscillator oscillator(2.0);
+    CHECK(velocityRate(oscillator, X) == VecX::Constant(1, -12.0));
+    CHECK(oscillator.forceEvaluations() == 1);
   }
 }

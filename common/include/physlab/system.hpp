@@ -19,6 +19,11 @@
 
 namespace physlab {
 
+namespace remote {
+template <int>
+struct Access;  // the grader's wire (tests/support/remote): what crosses to a grading worker
+}  // namespace remote
+
 /// A second-order ODE system \f$\dot X = f(X)\f$ with state \f$X = [q;\ p]\f$.
 ///
 /// Public calls validate their arguments and count evaluations; derived classes implement the
@@ -78,6 +83,8 @@ class System {
   virtual bool computeJacobian(const VecX& X, MatX& J) const;
 
  private:
+  template <int>
+  friend struct remote::Access;  // a system evaluated by a grading worker counts its evaluations here
   mutable long force_evaluations_ = 0;
 };
 

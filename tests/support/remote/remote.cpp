@@ -17,6 +17,7 @@
 #include <new>
 #include <stdexcept>
 
+#include "handles.hpp"
 #include "physlab/error.hpp"
 #include "physlab/lcp.hpp"
 
@@ -122,33 +123,38 @@ bool readAll(int fd, char* data, std::size_t size) {
   return true;
 }
 
-// A message is its size (4 bytes) and its bytes, written with one system call and, when it fits
-// in kChunk, read with one: a call's round trip costs four system calls, not eight.
+// A message is its size (4 bytes), its Tag (1 byte, counted in the size) and its bytes, written
+// with one system call and, when it fits in kChunk, read with one: a call's round trip costs four
+// system calls, not eight.
 constexpr std::size_t kChunk = 1 << 16;
+constexpr std::size_t kHeader = sizeof(std::uint32_t) + 1;
 
-bool sendMessage(int fd, const std::vector<char>& payload) {
-  std::uint32_t size = static_cast<std::uint32_t>(payload.size());
-  iovec parts[2] = {{&size, sizeof size}, {const_cast<char*>(payload.data()), payload.size()}};
-  const std::size_t total = sizeof size + payload.size();
+bool sendMessage(int fd, Tag tag, const std::vector<char>& payload) {
+  char header[kHeader];
+  const auto size = static_cast<std::uint32_t>(payload.size() + 1);
+  std::memcpy(header, &size, sizeof size);
+  header[sizeof size] = static_cast<char>(tag);
+  iovec parts[2] = {{header, kHeader}, {const_cast<char*>(payload.data()), payload.size()}};
+  const std::size_t total = kHeader + payload.size();
   ssize_t wrote;
   do {
     wrote = ::writev(fd, parts, 2);
   } while (wrote < 0 && errno == EINTR);
   if (wrote < 0) return false;
   auto done = static_cast<std::size_t>(wrote);
-  if (done < sizeof size) {
-    if (!writeAll(fd, reinterpret_cast<const char*>(&size) + done, sizeof size - done)) return false;
-    done = sizeof size;
+  if (done < kHeader) {
+    if (!writeAll(fd, header + done, kHeader - done)) return false;
+    done = kHeader;
   }
-  return done == total || writeAll(fd, payload.data() + (done - sizeof size), total - done);
+  return done == total || writeAll(fd, payload.data() + (done - kHeader), total - done);
 }
 
 // 1: a message, 0: the other end closed, -1: a size the protocol does not allow, or more bytes
-// than the message (nothing is ever sent before the reply to it is read).
-int receiveMessage(int fd, std::vector<char>& payload) {
+// than the message (nothing is ever sent before the answer to the last message is read).
+int receiveMessage(int fd, std::vector<char>& payload, Tag& tag) {
   payload.resize(kChunk);
   std::size_t got = 0;
-  while (got < sizeof(std::uint32_t)) {
+  while (got < kHeader) {
     const ssize_t n = ::read(fd, payload.data() + got, payload.size() - got);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return 0;
@@ -156,12 +162,13 @@ int receiveMessage(int fd, std::vector<char>& payload) {
   }
   std::uint32_t size = 0;
   std::memcpy(&size, payload.data(), sizeof size);
-  if (size > kLargestMessage) return -1;
+  if (size < 1 || size > kLargestMessage) return -1;
   const std::size_t total = sizeof size + size;
   if (got > total) return -1;
   payload.resize(total);
   if (!readAll(fd, payload.data() + got, total - got)) return 0;
-  payload.erase(payload.begin(), payload.begin() + sizeof size);
+  tag = static_cast<Tag>(payload[sizeof size]);
+  payload.erase(payload.begin(), payload.begin() + kHeader);
   return 1;
 }
 
@@ -314,7 +321,15 @@ constexpr int kNotGraded = 5;
   _exit(code);
 }
 
+// Calls in progress in the checker: 1 during a call, more while a callback's code makes calls of
+// its own. Handles live while it is above 0 (handles.hpp).
+int depth = 0;
+
 }  // namespace
+
+void beginCall() {
+  if (depth == 0) forgetHandles();
+}
 
 std::vector<char> exchange(const char* function, Writer& request) {
   Worker& w = worker();
@@ -326,14 +341,35 @@ std::vector<char> exchange(const char* function, Writer& request) {
       endTest(error.what(), kNotGraded);
     }
   }
-  std::vector<char> reply;
+  struct Nesting {
+    Nesting() { ++depth; }
+    ~Nesting() {
+      if (--depth == 0) forgetHandles();
+    }
+  } nesting;
+  std::vector<char> message;
+  Tag tag = Tag::Reply;
   int got = 0;
-  if (sendMessage(w.requests, request.buffer())) got = receiveMessage(w.replies, reply);
-  if (got == 1) return reply;
-  if (got < 0) {
+  if (sendMessage(w.requests, Tag::Request, request.buffer())) got = receiveMessage(w.replies, message, tag);
+  while (got == 1 && tag == Tag::Callback) {
+    Writer answer;
+    try {
+      Reader in(message.data(), message.size());
+      answerCallback(in, answer);
+    } catch (const WireError& error) {
+      kill(w.pid, SIGKILL);
+      w.ending();
+      w.failure = std::string("the submitted code's process made a callback no call allows, during ") + function +
+                  ": " + error.what();
+      endTest(w.failure);
+    }
+    got = sendMessage(w.requests, Tag::Answer, answer.buffer()) ? receiveMessage(w.replies, message, tag) : 0;
+  }
+  if (got == 1 && tag == Tag::Reply) return message;
+  if (got != 0) {
     kill(w.pid, SIGKILL);
     w.ending();
-    w.failure = std::string("the submitted code's process sent a reply of a size no call has, during ") + function;
+    w.failure = std::string("the submitted code's process sent a message no call has, during ") + function;
   } else {
     w.failure = std::string("the submitted code's process ") + w.ending() + " during " + function +
                 "() (in your own `./physlab test`, run this test under a debugger to see where)";
@@ -341,20 +377,52 @@ std::vector<char> exchange(const char* function, Writer& request) {
   endTest(w.failure);
 }
 
-int serve(const Entry* table, std::uint32_t size) {
-  std::vector<char> request;
+namespace {
+
+// The worker's table, for the requests that come while a callback waits for its answer.
+const Entry* served = nullptr;
+std::uint32_t served_size = 0;
+
+// Answers one request: 0 when answered, -1 when the checker has closed its end, else the worker's
+// exit status (a function the table does not have). Each request has its own buffers: a nested
+// one is answered while the entry that made the callback still reads its own.
+int serveRequest(const std::vector<char>& request) {
+  Reader in(request.data(), request.size());
+  std::uint32_t index = 0;
+  get(in, index);
+  if (index >= served_size) return 3;
   Writer out;
+  served[index](in, out);
+  return sendMessage(kReplies, Tag::Reply, out.buffer()) ? 0 : -1;
+}
+
+}  // namespace
+
+int serve(const Entry* table, std::uint32_t size) {
+  served = table;
+  served_size = size;
+  std::vector<char> request;
   for (;;) {
-    const int got = receiveMessage(kRequests, request);
+    Tag tag = Tag::Request;
+    const int got = receiveMessage(kRequests, request, tag);
     if (got == 0) return 0;
-    if (got < 0) return 2;
-    Reader in(request.data(), request.size());
-    std::uint32_t index = 0;
-    get(in, index);
-    if (index >= size) return 3;
-    out.buffer().clear();
-    table[index](in, out);
-    if (!sendMessage(kReplies, out.buffer())) return 0;
+    if (got < 0 || tag != Tag::Request) return 2;
+    const int status = serveRequest(request);
+    if (status != 0) return status < 0 ? 0 : status;
+  }
+}
+
+std::vector<char> callBack(Writer& callback) {
+  if (!sendMessage(kReplies, Tag::Callback, callback.buffer())) _exit(0);
+  std::vector<char> message;
+  for (;;) {
+    Tag tag = Tag::Answer;
+    const int got = receiveMessage(kRequests, message, tag);
+    if (got == 0) _exit(0);
+    if (got < 0 || (tag != Tag::Answer && tag != Tag::Request)) _exit(2);
+    if (tag == Tag::Answer) return message;
+    const int status = serveRequest(message);
+    if (status != 0) _exit(status < 0 ? 0 : status);
   }
 }
 

@@ -15,9 +15,12 @@
 
 #include <cstdint>
 #include <exception>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "wire.hpp"
 
@@ -28,6 +31,11 @@ class WorkerFailure : public std::runtime_error {
  public:
   explicit WorkerFailure(const std::string& what) : std::runtime_error(what) {}
 };
+
+/// What a message is, its first byte. Calls nest: while the checker waits for a Reply it may get
+/// a Callback (a method of an object it lent as a handle, handles.hpp), whose code may make a
+/// Request of its own; the worker, waiting for the Answer, serves that Request first.
+enum class Tag : std::uint8_t { Request = 1, Reply = 2, Callback = 3, Answer = 4 };
 
 /// How a call ended, first byte of a reply.
 enum class Ending : std::uint8_t { Returned = 0, Threw = 1 };
@@ -60,14 +68,22 @@ Family currentFamily(const std::exception& error);
 void endWorker();
 
 /// Sends a request (the index of `function` in the stage's table, then its arguments) and returns
-/// the reply's bytes; starts the worker on first use. A worker that cannot start or that ends
-/// during the call ends the test (see remote.cpp).
+/// the reply's bytes; starts the worker on first use. Callbacks that come meanwhile are answered
+/// (handles.hpp). A worker that cannot start, that ends during the call, or that sends a malformed
+/// callback ends the test (see remote.cpp).
 std::vector<char> exchange(const char* function, Writer& request);
+
+/// Called as a request starts being written: outside any call, the handles of an earlier call
+/// that never reached the worker (an argument threw while it was written) are forgotten.
+void beginCall();
 
 /// One proxied call: arguments in, then the reply read back in the same order the worker wrote it.
 class Call {
  public:
-  Call(std::uint32_t index, const char* function) : function_(function) { request_.bytes(&index, sizeof index); }
+  Call(std::uint32_t index, const char* function) : function_(function) {
+    beginCall();
+    request_.bytes(&index, sizeof index);
+  }
   template <class T>
   void in(const T& value) {
     put(request_, value);
@@ -88,12 +104,12 @@ class Call {
   void back(T& value) {
     get(*reader_, value);
   }
-  /// A writable view (Eigen::Ref): its entries come back, at the size they went.
+  /// A writable view (Eigen::Ref, Eigen::Map): its entries come back, at the shape they went.
   template <class View>
   void backInto(View&& view) {
-    Eigen::VectorXd value;
+    typename std::decay_t<View>::PlainObject value;
     get(*reader_, value);
-    if (value.size() != view.size()) throw WireError("a vector came back resized");
+    if (value.rows() != view.rows() || value.cols() != view.cols()) throw WireError("a view came back resized");
     view = value;
   }
   template <class T>
@@ -150,6 +166,8 @@ void respond(Writer& out, F&& call, B&& back) {
       back();
       put(out, value);
     }
+  } catch (const WireError&) {
+    throw;  // a malformed message during a nested call: no code may catch it, it ends the test
   } catch (const std::exception& error) {
     out.buffer().clear();
     put(out, Ending::Threw);
@@ -168,5 +186,9 @@ void respond(Writer& out, F&& call, B&& back) {
 /// The worker's loop: answers requests on descriptor 3 with replies on descriptor 4 until the
 /// checker closes its end; returns the process's exit status.
 int serve(const Entry* table, std::uint32_t size);
+
+/// Sends a callback (handles.hpp) and returns its answer's bytes, serving the requests the
+/// checker makes before it answers. Ends the worker when the checker has closed its end.
+std::vector<char> callBack(Writer& callback);
 
 }  // namespace physlab::remote

@@ -46,6 +46,8 @@ struct Access<0> {
     f(solver.moved_);
   }
   static SoftStepSolver blank(std::common_type<SoftStepSolver>) { return SoftStepSolver(SoftStepSettings{}); }
+  /// The force evaluations a worker made on its copy of `system` (handles.hpp).
+  static void addEvaluations(const System& system, long evaluations) { system.force_evaluations_ += evaluations; }
   static RigidBody blank(std::common_type<RigidBody>) { return RigidBody(1.0, Mat3::Identity()); }
   static RigidBodySystem blank(std::common_type<RigidBodySystem>) {
     return RigidBodySystem(RigidBody(1.0, Mat3::Identity()));
@@ -96,6 +98,20 @@ T blank() {
     return Access<0>::blank(std::common_type<T>{});
   }
 }
+
+/// What the worker reads an argument of type T into: by default a T, read in place; handles.hpp
+/// gives the types that are views or handles a holder of what they refer to. *arg is the argument
+/// the student's function gets, back() writes it into the reply.
+template <class T, class = void>
+class Arg {
+ public:
+  explicit Arg(Reader& in) : value_(blank<T>()) { get(in, value_); }
+  T& operator*() { return value_; }
+  void back(Writer& out) const { put(out, value_); }
+
+ private:
+  T value_;
+};
 
 struct IgnoreMember {
   template <class M>

@@ -285,6 +285,14 @@ struct Codec<Eigen::Matrix<S, R, C, O, MR, MC>> {
   }
 };
 
+/// A map of a matrix (Points, ConstPoints) goes as the matrix it shows; it is read back into one.
+template <class M>
+struct Codec<Eigen::Map<M>> {
+  static void put(Writer& out, const Eigen::Map<M>& value) {
+    remote::put(out, typename Eigen::Map<M>::PlainObject(value));
+  }
+};
+
 template <class S, int O>
 struct Codec<Eigen::Quaternion<S, O>> {
   static void put(Writer& out, const Eigen::Quaternion<S, O>& value) { out.bytes(value.coeffs().data(), 4 * sizeof(S)); }
