@@ -236,6 +236,101 @@ TEST_CASE("remote wire: an exception crosses as its family with its message", "[
   }
 }
 
+TEST_CASE("remote callbacks: a lent system answers through its public, counting methods", "[common]") {
+  remote::forgetHandles();
+  const Callable system;
+  const std::uint32_t handle = handleOf(system);
+  const VecX X = (VecX(2) << 3.0, -1.0).finished();
+  const auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
+  Reader in(callback.data(), callback.size());
+  Writer answer;
+  remote::answerCallback(in, answer);
+  Reader back(answer.buffer().data(), answer.buffer().size());
+  remote::Ending ending{};
+  VecX rate;
+  remote::get(back, ending);
+  remote::get(back, rate);
+  CHECK(ending == remote::Ending::Returned);
+  CHECK(rate == VecX::Constant(1, -3.0));
+  CHECK(back.remaining() == 0);
+  CHECK(system.forceEvaluations() == 1);
+
+  SECTION("an exception of the system's crosses back as its family, with its message") {
+    const auto wrong = callbackOf(handle, remote::Method::VelocityRate, VecX::Zero(3));
+    Reader wrong_in(wrong.data(), wrong.size());
+    Writer thrown;
+    remote::answerCallback(wrong_in, thrown);
+    Reader thrown_back(thrown.buffer().data(), thrown.buffer().size());
+    remote::get(thrown_back, ending);
+    remote::get(thrown_back, rate);
+    remote::Family family{};
+    remote::get(thrown_back, family);
+    CHECK(ending == remote::Ending::Threw);
+    CHECK(family == remote::Family::InvalidInput);
+  }
+  remote::forgetHandles();
+}
+
+TEST_CASE("remote callbacks: only what the checker lent during the call is reached", "[common]") {
+  remote::forgetHandles();
+  const Callable system;
+  const std::uint32_t handle = handleOf(system);
+  const VecX X = VecX::Zero(2);
+  Writer answer;
+  SECTION("a handle never lent") {
+    const auto callback = callbackOf(handle + 1, remote::Method::VelocityRate, X);
+    Reader in(callback.data(), callback.size());
+    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
+  }
+  SECTION("a handle of a call that has ended") {
+    remote::forgetHandles();
+    const auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
+    Reader in(callback.data(), callback.size());
+    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
+  }
+  SECTION("a method no system has") {
+    const auto callback = callbackOf(handle, remote::Method::Potential, X);
+    Reader in(callback.data(), callback.size());
+    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
+  }
+  SECTION("bytes past the arguments") {
+    auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
+    callback.push_back(0);
+    Reader in(callback.data(), callback.size());
+    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
+  }
+  CHECK(system.forceEvaluations() == 0);
+  remote::forgetHandles();
+}
+
+TEST_CASE("remote callbacks: across processes, a callback's code may call the worker again", "[common]") {
+  ::setenv("PHYSLAB_WORKER", PHYSLAB_TEST_WORKER, 1);
+  const auto velocityRate = [](const System& system, const VecX& X) {
+    remote::Call call(0, "velocityRate");
+    call.in(system);
+    call.in(X);
+    call.send();
+    remote::addEvaluations(call, system);
+    return call.result<VecX>();
+  };
+  const VecX X = (VecX(2) << 3.0, -1.0).finished();
+  SECTION("a handle: one callback, counted in the checker") {
+    const Callable system;
+    CHECK(velocityRate(system, X) == VecX::Constant(1, -3.0));
+    CHECK(system.forceEvaluations() == 1);
+  }
+  SECTION("a nested request while the worker waits for the callback's answer") {
+    const Callable system(true);
+    CHECK(velocityRate(system, X) == VecX::Constant(1, -6.0));
+    CHECK(system.forceEvaluations() == 1);
+  }
+  SECTION("a framework system crosses as a copy; its evaluations are counted back") {
+    const HarmonicOscillator oscillator(2.0);
+    CHECK(velocityRate(oscillator, X) == VecX::Constant(1, -12.0));
+    CHECK(oscillator.forceEvaluations() == 1);
+  }
+}
+
 namespace {
 
 // A 3 x 3 cloth with a pinned corner, its workspace's vectors filled with seeded values.
@@ -331,98 +426,5 @@ TEST_CASE("remote wire: a malformed workspace is refused", "[common]") {
     refused(message(n, {{-1, 1}}, 3 * n));
     refused(message(0, {}, 0));
     refused(message(Index(1) << 40, pairs, 3 * n));
-
-TEST_CASE("remote callbacks: a lent system answers through its public, counting methods", "[common]") {
-  remote::forgetHandles();
-  const Callable system;
-  const std::uint32_t handle = handleOf(system);
-  const VecX X = (VecX(2) << 3.0, -1.0).finished();
-  const auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
-  Reader in(callback.data(), callback.size());
-  Writer answer;
-  remote::answerCallback(in, answer);
-  Reader back(answer.buffer().data(), answer.buffer().size());
-  remote::Ending ending{};
-  VecX rate;
-  remote::get(back, ending);
-  remote::get(back, rate);
-  CHECK(ending == remote::Ending::Returned);
-  CHECK(rate == VecX::Constant(1, -3.0));
-  CHECK(back.remaining() == 0);
-  CHECK(system.forceEvaluations() == 1);
-
-  SECTION("an exception of the system's crosses back as its family, with its message") {
-    const auto wrong = callbackOf(handle, remote::Method::VelocityRate, VecX::Zero(3));
-    Reader wrong_in(wrong.data(), wrong.size());
-    Writer thrown;
-    remote::answerCallback(wrong_in, thrown);
-    Reader thrown_back(thrown.buffer().data(), thrown.buffer().size());
-    remote::get(thrown_back, ending);
-    remote::get(thrown_back, rate);
-    remote::Family family{};
-    remote::get(thrown_back, family);
-    CHECK(ending == remote::Ending::Threw);
-    CHECK(family == remote::Family::InvalidInput);
-  }
-  remote::forgetHandles();
-}
-
-TEST_CASE("remote callbacks: only what the checker lent during the call is reached", "[common]") {
-  remote::forgetHandles();
-  const Callable system;
-  const std::uint32_t handle = handleOf(system);
-  const VecX X = VecX::Zero(2);
-  Writer answer;
-  SECTION("a handle never lent") {
-    const auto callback = callbackOf(handle + 1, remote::Method::VelocityRate, X);
-    Reader in(callback.data(), callback.size());
-    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
-  }
-  SECTION("a handle of a call that has ended") {
-    remote::forgetHandles();
-    const auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
-    Reader in(callback.data(), callback.size());
-    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
-  }
-  SECTION("a method no system has") {
-    const auto callback = callbackOf(handle, remote::Method::Potential, X);
-    Reader in(callback.data(), callback.size());
-    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
-  }
-  SECTION("bytes past the arguments") {
-    auto callback = callbackOf(handle, remote::Method::VelocityRate, X);
-    callback.push_back(0);
-    Reader in(callback.data(), callback.size());
-    CHECK_THROWS_AS(remote::answerCallback(in, answer), WireError);
-  }
-  CHECK(system.forceEvaluations() == 0);
-  remote::forgetHandles();
-}
-
-TEST_CASE("remote callbacks: across processes, a callback's code may call the worker again", "[common]") {
-  ::setenv("PHYSLAB_WORKER", PHYSLAB_TEST_WORKER, 1);
-  const auto velocityRate = [](const System& system, const VecX& X) {
-    remote::Call call(0, "velocityRate");
-    call.in(system);
-    call.in(X);
-    call.send();
-    remote::addEvaluations(call, system);
-    return call.result<VecX>();
-  };
-  const VecX X = (VecX(2) << 3.0, -1.0).finished();
-  SECTION("a handle: one callback, counted in the checker") {
-    const Callable system;
-    CHECK(velocityRate(system, X) == VecX::Constant(1, -3.0));
-    CHECK(system.forceEvaluations() == 1);
-  }
-  SECTION("a nested request while the worker waits for the callback's answer") {
-    const Callable system(true);
-    CHECK(velocityRate(system, X) == VecX::Constant(1, -6.0));
-    CHECK(system.forceEvaluations() == 1);
-  }
-  SECTION("a framework system crosses as a copy; its evaluations are counted back") {
-    const HarmonicOscillator oscillator(2.0);
-    CHECK(velocityRate(oscillator, X) == VecX::Constant(1, -12.0));
-    CHECK(oscillator.forceEvaluations() == 1);
   }
 }
