@@ -2,12 +2,14 @@
 // was, and what a hostile worker sends is refused with an error, never read past its end.
 #include <catch2/catch.hpp>
 
+#include "physlab/collision.hpp"
 #include "physlab/lcp.hpp"
 #include "physlab/resting.hpp"
 #include "physlab/soft_step.hpp"
 #include "physlab/timewarp.hpp"
 #include "physlab/world.hpp"
 #include "remote/remote.hpp"
+#include "remote/state.hpp"
 #include "support.hpp"
 
 namespace {
@@ -108,6 +110,51 @@ TEST_CASE("remote wire: aggregates, matrices and vectors come back as they were"
     CHECK(readBack<std::vector<double>>(bytesOf(std::vector<double>{})).empty());
     CHECK(readBack<std::string>(bytesOf(std::string("a\0b", 3))) == std::string("a\0b", 3));
     CHECK(readBack<std::optional<Vec3>>(bytesOf(std::optional<Vec3>())) == std::nullopt);
+  }
+}
+
+TEST_CASE("remote wire: a std::variant crosses as its alternative's index, then the alternative", "[common]") {
+  // Lab 4's Shape: every alternative, none of them default constructible
+  const std::vector<Shape> shapes{Sphere(0.25),
+                                  Box(Vec3(0.5, 1, 2)),
+                                  Capsule(0.1, 0.7),
+                                  Plane(Vec3(0, 3, 4), 2),
+                                  ConvexPolyhedron::tetrahedron(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()),
+                                  Triangle(Vec3(1, 0, 0), Vec3(0, 2, 0), Vec3(0, 0, 3))};
+  for (const Shape& shape : shapes) {
+    CAPTURE(shapeName(shape));
+    const auto bytes = bytesOf(shape);
+    Reader in(bytes.data(), bytes.size());
+    Shape back = Sphere(9);
+    remote::get(in, back);
+    CHECK(in.remaining() == 0);
+    CHECK(back.index() == shape.index());
+    CHECK(bytesOf(back) == bytes);
+  }
+  const auto box = bytesOf(shapes[1]);
+  Reader box_in(box.data(), box.size());
+  Shape box_back = Sphere(9);
+  remote::get(box_in, box_back);
+  CHECK(std::get<Box>(box_back).half_extents == Vec3(0.5, 1, 2));
+
+  SECTION("an index the variant has no alternative for is refused, and the value kept") {
+    for (const std::uint32_t index : {6u, 7u, ~0u}) {
+      Writer out;
+      remote::put(out, index);
+      remote::put(out, 1.0);
+      Reader in(out.buffer().data(), out.buffer().size());
+      Shape value = Capsule(0.1, 0.7);
+      CHECK_THROWS_AS(remote::get(in, value), WireError);
+      CHECK(std::get<Capsule>(value).half_height == 0.7);
+    }
+  }
+  SECTION("an alternative cut short is refused") {
+    const auto bytes = bytesOf(shapes[4]);
+    for (std::size_t size = 0; size < bytes.size(); ++size) {
+      Reader in(bytes.data(), size);
+      Shape value = Sphere(1);
+      CHECK_THROWS_AS(remote::get(in, value), WireError);
+    }
   }
 }
 

@@ -8,7 +8,8 @@
 //
 // What crosses: arithmetic values and enums (their bytes), bool (one byte, any non-zero is true),
 // std::string, Eigen's dense matrices (fixed or dynamic: sizes, then entries column by column)
-// and quaternions, std::vector, std::optional, std::pair, std::array, and aggregates (structs
+// and quaternions, std::vector, std::optional, std::pair, std::array, std::variant (the index of
+// its alternative, then the alternative: Lab 4's Shape), and aggregates (structs
 // with public members and no constructors: ContactBody, LcpSolution, ...), whose members are
 // found by the compiler (AggregateFields below), so a member added to a header crosses without
 // a line written here.
@@ -22,6 +23,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
@@ -208,6 +210,10 @@ void visitFields(T& value, F&& f) {
 template <class T, class Enable = void>
 struct Codec;
 
+/// A blank T to read into (state.hpp: the classes without a default constructor have one there).
+template <class T>
+T blank();
+
 /// Writes `value`.
 template <class T>
 void put(Writer& out, const T& value) {
@@ -342,6 +348,40 @@ struct Codec<std::pair<A, B>> {
   static void get(Reader& in, std::pair<A, B>& value) {
     remote::get(in, value.first);
     remote::get(in, value.second);
+  }
+};
+
+/// The index of the alternative held, then the alternative. An index the variant has no
+/// alternative for is refused; the alternative is read into a blank one (its type may have no
+/// default constructor: Sphere, Box, ...), so a failed read leaves `value` as it was.
+template <class... T>
+struct Codec<std::variant<T...>> {
+  using V = std::variant<T...>;
+  static void put(Writer& out, const V& value) {
+    remote::put(out, static_cast<std::uint32_t>(value.index()));
+    std::visit([&](const auto& alternative) { remote::put(out, alternative); }, value);
+  }
+  static void get(Reader& in, V& value) {
+    std::uint32_t index = 0;
+    remote::get(in, index);
+    if (index >= sizeof...(T)) {
+      throw WireError("a variant's alternative " + std::to_string(index) + " where it has " + std::to_string(sizeof...(T)));
+    }
+    readers(std::index_sequence_for<T...>{})[index](in, value);
+  }
+
+ private:
+  template <std::size_t I>
+  static void read(Reader& in, V& value) {
+    using Alternative = std::variant_alternative_t<I, V>;
+    Alternative alternative = blank<Alternative>();
+    remote::get(in, alternative);
+    value.template emplace<I>(std::move(alternative));
+  }
+  // The reader of each alternative, by index.
+  template <std::size_t... I>
+  static constexpr std::array<void (*)(Reader&, V&), sizeof...(T)> readers(std::index_sequence<I...>) {
+    return {&read<I>...};
   }
 };
 
