@@ -158,6 +158,52 @@ TEST_CASE("remote wire: a std::variant crosses as its alternative's index, then 
   }
 }
 
+TEST_CASE("remote wire: a pool crosses as its changes since it last crossed", "[common]") {
+  std::vector<Aabb> boxes(100);
+  for (auto& box : boxes) box = Aabb{test::randomVec3(1), test::randomVec3(1) + Vec3::Constant(2)};
+  const auto crossed = [](std::vector<Aabb>& items) {
+    Writer out;
+    remote::Changes<Aabb> sent(items);
+    remote::put(out, sent);
+    return out.buffer();
+  };
+  const auto received = [](const std::vector<char>& bytes) {
+    std::vector<Aabb> items;
+    remote::Changes<Aabb> back(items);
+    Reader in(bytes.data(), bytes.size());
+    remote::get(in, back);
+    CHECK(in.remaining() == 0);
+    return items;
+  };
+  const auto whole = crossed(boxes);
+  CHECK(bytesOf(received(whole)) == bytesOf(boxes));
+  // One box changed, one added: a size, a count, and two (index, box)
+  boxes[17].max.x() += 1;
+  boxes.push_back(boxes[3]);
+  const auto changes = crossed(boxes);
+  CHECK(changes.size() == 8 + 8 + 2 * (8 + 2 * (16 + 24)));
+  CHECK(bytesOf(received(changes)) == bytesOf(boxes));
+  // Unchanged and shrunk: nothing but the size
+  boxes.resize(50);
+  CHECK(crossed(boxes).size() == 16);
+  CHECK(bytesOf(received(crossed(boxes))) == bytesOf(boxes));
+
+  SECTION("a size past the last vector's end and its changes, or a change past the size, is refused") {
+    // 50 items known and one change: a size of at most 51, and an index below it
+    for (const auto& [size, index] : {std::pair<std::uint64_t, std::uint64_t>{60, 0}, {51, 51}}) {
+      Writer out;
+      remote::put(out, size);
+      remote::put(out, std::uint64_t{1});
+      remote::put(out, index);
+      remote::put(out, boxes[0]);
+      std::vector<Aabb> items;
+      remote::Changes<Aabb> back(items);
+      Reader in(out.buffer().data(), out.buffer().size());
+      CHECK_THROWS_AS(remote::get(in, back), WireError);
+    }
+  }
+}
+
 TEST_CASE("remote wire: a malformed reply is refused, never read past its end", "[common]") {
   std::vector<Contact> contacts{randomContact(), randomContact()};
   const auto bytes = bytesOf(contacts);

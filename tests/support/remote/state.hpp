@@ -112,7 +112,8 @@ struct Access<0> {
   }
   template <class F>
   static void visit(DynamicAabbTree& tree, F&& f) {
-    f(tree.nodes_);
+    Changes<DynamicAabbTree::Node> nodes(tree.nodes_);  // a pool of which a call changes a few nodes
+    f(nodes);
     f(tree.stack_);
     f(tree.root_);
     f(tree.free_);

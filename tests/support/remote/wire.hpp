@@ -385,6 +385,84 @@ struct Codec<std::variant<T...>> {
   }
 };
 
+/// A vector that crosses as its changes: its size, then the items that differ from the vector
+/// that last crossed this way, in either direction (each with its index). For a large pool of
+/// which a call changes a few items, such as Lab 4's dynamic tree, whose framework calls the
+/// student's functions at every insertion and removal: whole, its nodes made such a test cross
+/// hundreds of megabytes, and take minutes. Both processes keep the last vector, and the pipe
+/// carries one message at a time, each read as it was written, so they keep the same one: a
+/// checker talks to one worker for its whole life (remote.cpp).
+///
+/// An item is unchanged when its bytes are those it had in memory right after the last crossing
+/// (a snapshot, padding included: a copy would not copy the padding, so every item would differ
+/// from it). A byte that differs only sends an item more; an item sent is its value, member by
+/// member, as always.
+template <class T>
+class Changes {
+ public:
+  explicit Changes(std::vector<T>& items) : items_(items) {}
+
+  void put(Writer& out) const {
+    Crossed& last = crossed();
+    last.changed.clear();
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+      if (i >= last.items.size() || std::memcmp(&items_[i], &last.bytes[i * sizeof(T)], sizeof(T)) != 0) {
+        last.changed.push_back(i);
+      }
+    }
+    remote::put(out, static_cast<std::uint64_t>(items_.size()));
+    remote::put(out, static_cast<std::uint64_t>(last.changed.size()));
+    for (const std::uint64_t i : last.changed) {
+      remote::put(out, i);
+      remote::put(out, items_[i]);
+    }
+    last.items = items_;
+    snapshot(last);
+  }
+  void get(Reader& in) {
+    Crossed& last = crossed();
+    std::uint64_t size = 0;
+    remote::get(in, size);
+    const std::size_t count = in.count(sizeof(std::uint64_t));
+    // Every item past the last vector's end comes as a change: no allocation past the message
+    if (size > last.items.size() + count) {
+      throw WireError("a vector of " + std::to_string(size) + " with " + std::to_string(count) + " changes");
+    }
+    last.items.resize(static_cast<std::size_t>(size));
+    for (std::size_t k = 0; k < count; ++k) {
+      std::uint64_t i = 0;
+      remote::get(in, i);
+      if (i >= size) throw WireError("a change at " + std::to_string(i) + " of a vector of " + std::to_string(size));
+      remote::get(in, last.items[static_cast<std::size_t>(i)]);
+    }
+    items_ = last.items;
+    snapshot(last);
+  }
+
+ private:
+  struct Crossed {
+    std::vector<T> items;               // the vector that crossed last
+    std::vector<unsigned char> bytes;   // the crossing side's items right after it crossed
+    std::vector<std::uint64_t> changed;  // scratch: the indices to send
+  };
+  static Crossed& crossed() {
+    static Crossed last;
+    return last;
+  }
+  void snapshot(Crossed& last) const {
+    last.bytes.resize(items_.size() * sizeof(T));
+    if (!items_.empty()) std::memcpy(last.bytes.data(), static_cast<const void*>(items_.data()), last.bytes.size());
+  }
+
+  std::vector<T>& items_;
+};
+
+template <class T>
+struct Codec<Changes<T>> {
+  static void put(Writer& out, const Changes<T>& value) { value.put(out); }
+  static void get(Reader& in, Changes<T>& value) { value.get(in); }
+};
+
 /// Aggregates: member by member.
 template <class T>
 struct IsStdArray : std::false_type {};
