@@ -194,6 +194,8 @@ function(physlab_add_framework_tests)
   if(PHYSLAB_REMOTE)
     # Lab 2's codecs build spring systems and workspaces (state.hpp): its framework, with its reference.
     target_link_libraries(test_common PRIVATE physlab_remote physlab_02_springs_ref)
+    # The wire's test sends Lab 4's shapes, whose constructors are Lab 4's framework
+    target_link_libraries(test_common PRIVATE physlab_04_collision_ref)
     # The worker of test_remote.cpp's calls that cross processes and nest.
     add_executable(physlab_test_worker "${PHYSLAB_ROOT}/tests/support/remote/test_worker.cpp")
     target_link_libraries(physlab_test_worker PRIVATE physlab_remote physlab_01_particles_ref)

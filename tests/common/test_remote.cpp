@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 
+#include "physlab/collision.hpp"
 #include "physlab/lcp.hpp"
 #include "physlab/resting.hpp"
 #include "physlab/soft_step.hpp"
@@ -162,6 +163,97 @@ TEST_CASE("remote wire: aggregates, matrices and vectors come back as they were"
     CHECK(readBack<std::vector<double>>(bytesOf(std::vector<double>{})).empty());
     CHECK(readBack<std::string>(bytesOf(std::string("a\0b", 3))) == std::string("a\0b", 3));
     CHECK(readBack<std::optional<Vec3>>(bytesOf(std::optional<Vec3>())) == std::nullopt);
+  }
+}
+
+TEST_CASE("remote wire: a std::variant crosses as its alternative's index, then the alternative", "[common]") {
+  // Lab 4's Shape: every alternative, none of them default constructible
+  const std::vector<Shape> shapes{Sphere(0.25),
+                                  Box(Vec3(0.5, 1, 2)),
+                                  Capsule(0.1, 0.7),
+                                  Plane(Vec3(0, 3, 4), 2),
+                                  ConvexPolyhedron::tetrahedron(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()),
+                                  Triangle(Vec3(1, 0, 0), Vec3(0, 2, 0), Vec3(0, 0, 3))};
+  for (const Shape& shape : shapes) {
+    CAPTURE(shapeName(shape));
+    const auto bytes = bytesOf(shape);
+    Reader in(bytes.data(), bytes.size());
+    Shape back = Sphere(9);
+    remote::get(in, back);
+    CHECK(in.remaining() == 0);
+    CHECK(back.index() == shape.index());
+    CHECK(bytesOf(back) == bytes);
+  }
+  const auto box = bytesOf(shapes[1]);
+  Reader box_in(box.data(), box.size());
+  Shape box_back = Sphere(9);
+  remote::get(box_in, box_back);
+  CHECK(std::get<Box>(box_back).half_extents == Vec3(0.5, 1, 2));
+
+  SECTION("an index the variant has no alternative for is refused, and the value kept") {
+    for (const std::uint32_t index : {6u, 7u, ~0u}) {
+      Writer out;
+      remote::put(out, index);
+      remote::put(out, 1.0);
+      Reader in(out.buffer().data(), out.buffer().size());
+      Shape value = Capsule(0.1, 0.7);
+      CHECK_THROWS_AS(remote::get(in, value), WireError);
+      CHECK(std::get<Capsule>(value).half_height == 0.7);
+    }
+  }
+  SECTION("an alternative cut short is refused") {
+    const auto bytes = bytesOf(shapes[4]);
+    for (std::size_t size = 0; size < bytes.size(); ++size) {
+      Reader in(bytes.data(), size);
+      Shape value = Sphere(1);
+      CHECK_THROWS_AS(remote::get(in, value), WireError);
+    }
+  }
+}
+
+TEST_CASE("remote wire: a pool crosses as its changes since it last crossed", "[common]") {
+  std::vector<Aabb> boxes(100);
+  for (auto& box : boxes) box = Aabb{test::randomVec3(1), test::randomVec3(1) + Vec3::Constant(2)};
+  const auto crossed = [](std::vector<Aabb>& items) {
+    Writer out;
+    remote::Changes<Aabb> sent(items);
+    remote::put(out, sent);
+    return out.buffer();
+  };
+  const auto received = [](const std::vector<char>& bytes) {
+    std::vector<Aabb> items;
+    remote::Changes<Aabb> back(items);
+    Reader in(bytes.data(), bytes.size());
+    remote::get(in, back);
+    CHECK(in.remaining() == 0);
+    return items;
+  };
+  const auto whole = crossed(boxes);
+  CHECK(bytesOf(received(whole)) == bytesOf(boxes));
+  // One box changed, one added: a size, a count, and two (index, box)
+  boxes[17].max.x() += 1;
+  boxes.push_back(boxes[3]);
+  const auto changes = crossed(boxes);
+  CHECK(changes.size() == 8 + 8 + 2 * (8 + 2 * (16 + 24)));
+  CHECK(bytesOf(received(changes)) == bytesOf(boxes));
+  // Unchanged and shrunk: nothing but the size
+  boxes.resize(50);
+  CHECK(crossed(boxes).size() == 16);
+  CHECK(bytesOf(received(crossed(boxes))) == bytesOf(boxes));
+
+  SECTION("a size past the last vector's end and its changes, or a change past the size, is refused") {
+    // 50 items known and one change: a size of at most 51, and an index below it
+    for (const auto& [size, index] : {std::pair<std::uint64_t, std::uint64_t>{60, 0}, {51, 51}}) {
+      Writer out;
+      remote::put(out, size);
+      remote::put(out, std::uint64_t{1});
+      remote::put(out, index);
+      remote::put(out, boxes[0]);
+      std::vector<Aabb> items;
+      remote::Changes<Aabb> back(items);
+      Reader in(out.buffer().data(), out.buffer().size());
+      CHECK_THROWS_AS(remote::get(in, back), WireError);
+    }
   }
 }
 

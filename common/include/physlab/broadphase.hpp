@@ -36,6 +36,11 @@
 
 namespace physlab {
 
+namespace remote {
+template <int>
+struct Access;  // the grader's wire (tests/support/remote): what crosses to a grading worker
+}  // namespace remote
+
 /// An axis-aligned bounding box in the world frame [m]: the points p with min <= p <= max
 /// component-wise. Boxes that only touch (a shared face, edge or corner) overlap.
 struct Aabb {
@@ -94,6 +99,8 @@ class BroadPhase {
   void countTests(long count) { tests_ += count; }
 
  private:
+  template <int>
+  friend struct remote::Access;  // the grader sends the test count with a broad phase's state
   long tests_ = 0;
 };
 
@@ -149,6 +156,8 @@ class SweepAndPrune final : public BroadPhase {
   long insertionSortEntries(const std::vector<Aabb>& boxes);
   /// Student: sweep the sorted entries_ and write the sorted pairs.
   void sweep(PairList& pairs);
+  template <int>
+  friend struct remote::Access;  // the grader sends the state and calls the student's functions remotely
 
   std::vector<Entry> entries_;
   int axis_ = 0;
@@ -181,6 +190,8 @@ class UniformGrid final : public BroadPhase {
  private:
   /// Student: set cell_size_ by the rule above (edges_ is scratch for the median).
   void chooseCellSize(const std::vector<Aabb>& boxes);
+  template <int>
+  friend struct remote::Access;  // the grader sends the state and calls the student's functions remotely
 
   /// One box's presence in one cell: the cell's integer coordinates and the box index.
   struct CellEntry {
@@ -246,6 +257,8 @@ class Bvh final : public BroadPhase {
   void queryAll(const std::vector<Aabb>& boxes, PairList& pairs);
   /// Student helper: makes the node for order_[first, last) and its subtree; returns its index.
   int buildNode(const std::vector<Aabb>& boxes, int first, int last);
+  template <int>
+  friend struct remote::Access;  // the grader sends the state and calls the student's functions remotely
 
   std::vector<Node> nodes_;
   std::vector<int> order_;
@@ -281,6 +294,8 @@ class KdTree final : public BroadPhase {
   /// or test it as a leaf. The children's lists are appended to lists_ and dropped after use.
   void visit(const std::vector<Aabb>& boxes, std::size_t begin, std::size_t end, const Vec3& lo,
              const Vec3& hi, int depth, PairList& pairs);
+  template <int>
+  friend struct remote::Access;  // the grader sends the state and calls the student's functions remotely
 
   std::vector<int> lists_;     ///< box lists of the nodes on the current path, back to back
   std::vector<double> keys_;   ///< scratch for the median
@@ -377,6 +392,8 @@ class DynamicAabbTree {
   int balance(int a);
   int allocateNode();
   void freeNode(int node);
+  template <int>
+  friend struct remote::Access;  // the grader sends the state and calls the student's functions remotely
 
   std::vector<Node> nodes_;
   std::vector<int> stack_;  ///< query stack, kept between queries

@@ -8,7 +8,8 @@
 //
 // What crosses: arithmetic values and enums (their bytes), bool (one byte, any non-zero is true),
 // std::string, Eigen's dense matrices (fixed or dynamic: sizes, then entries column by column)
-// and quaternions, std::vector, std::optional, std::pair, std::array, and aggregates (structs
+// and quaternions, std::vector, std::optional, std::pair, std::array, std::variant (the index of
+// its alternative, then the alternative: Lab 4's Shape), and aggregates (structs
 // with public members and no constructors: ContactBody, LcpSolution, ...), whose members are
 // found by the compiler (AggregateFields below), so a member added to a header crosses without
 // a line written here.
@@ -22,6 +23,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
@@ -208,6 +210,10 @@ void visitFields(T& value, F&& f) {
 template <class T, class Enable = void>
 struct Codec;
 
+/// A blank T to read into (state.hpp: the classes without a default constructor have one there).
+template <class T>
+T blank();
+
 /// Writes `value`.
 template <class T>
 void put(Writer& out, const T& value) {
@@ -351,6 +357,118 @@ struct Codec<std::pair<A, B>> {
     remote::get(in, value.first);
     remote::get(in, value.second);
   }
+};
+
+/// The index of the alternative held, then the alternative. An index the variant has no
+/// alternative for is refused; the alternative is read into a blank one (its type may have no
+/// default constructor: Sphere, Box, ...), so a failed read leaves `value` as it was.
+template <class... T>
+struct Codec<std::variant<T...>> {
+  using V = std::variant<T...>;
+  static void put(Writer& out, const V& value) {
+    remote::put(out, static_cast<std::uint32_t>(value.index()));
+    std::visit([&](const auto& alternative) { remote::put(out, alternative); }, value);
+  }
+  static void get(Reader& in, V& value) {
+    std::uint32_t index = 0;
+    remote::get(in, index);
+    if (index >= sizeof...(T)) {
+      throw WireError("a variant's alternative " + std::to_string(index) + " where it has " + std::to_string(sizeof...(T)));
+    }
+    readers(std::index_sequence_for<T...>{})[index](in, value);
+  }
+
+ private:
+  template <std::size_t I>
+  static void read(Reader& in, V& value) {
+    using Alternative = std::variant_alternative_t<I, V>;
+    Alternative alternative = blank<Alternative>();
+    remote::get(in, alternative);
+    value.template emplace<I>(std::move(alternative));
+  }
+  // The reader of each alternative, by index.
+  template <std::size_t... I>
+  static constexpr std::array<void (*)(Reader&, V&), sizeof...(T)> readers(std::index_sequence<I...>) {
+    return {&read<I>...};
+  }
+};
+
+/// A vector that crosses as its changes: its size, then the items that differ from the vector
+/// that last crossed this way, in either direction (each with its index). For a large pool of
+/// which a call changes a few items, such as Lab 4's dynamic tree, whose framework calls the
+/// student's functions at every insertion and removal: whole, its nodes made such a test cross
+/// hundreds of megabytes, and take minutes. Both processes keep the last vector, and the pipe
+/// carries one message at a time, each read as it was written, so they keep the same one: a
+/// checker talks to one worker for its whole life (remote.cpp).
+///
+/// An item is unchanged when its bytes are those it had in memory right after the last crossing
+/// (a snapshot, padding included: a copy would not copy the padding, so every item would differ
+/// from it). A byte that differs only sends an item more; an item sent is its value, member by
+/// member, as always.
+template <class T>
+class Changes {
+ public:
+  explicit Changes(std::vector<T>& items) : items_(items) {}
+
+  void put(Writer& out) const {
+    Crossed& last = crossed();
+    last.changed.clear();
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+      if (i >= last.items.size() || std::memcmp(&items_[i], &last.bytes[i * sizeof(T)], sizeof(T)) != 0) {
+        last.changed.push_back(i);
+      }
+    }
+    remote::put(out, static_cast<std::uint64_t>(items_.size()));
+    remote::put(out, static_cast<std::uint64_t>(last.changed.size()));
+    for (const std::uint64_t i : last.changed) {
+      remote::put(out, i);
+      remote::put(out, items_[i]);
+    }
+    last.items = items_;
+    snapshot(last);
+  }
+  void get(Reader& in) {
+    Crossed& last = crossed();
+    std::uint64_t size = 0;
+    remote::get(in, size);
+    const std::size_t count = in.count(sizeof(std::uint64_t));
+    // Every item past the last vector's end comes as a change: no allocation past the message
+    if (size > last.items.size() + count) {
+      throw WireError("a vector of " + std::to_string(size) + " with " + std::to_string(count) + " changes");
+    }
+    last.items.resize(static_cast<std::size_t>(size));
+    for (std::size_t k = 0; k < count; ++k) {
+      std::uint64_t i = 0;
+      remote::get(in, i);
+      if (i >= size) throw WireError("a change at " + std::to_string(i) + " of a vector of " + std::to_string(size));
+      remote::get(in, last.items[static_cast<std::size_t>(i)]);
+    }
+    items_ = last.items;
+    snapshot(last);
+  }
+
+ private:
+  struct Crossed {
+    std::vector<T> items;               // the vector that crossed last
+    std::vector<unsigned char> bytes;   // the crossing side's items right after it crossed
+    std::vector<std::uint64_t> changed;  // scratch: the indices to send
+  };
+  static Crossed& crossed() {
+    static Crossed last;
+    return last;
+  }
+  void snapshot(Crossed& last) const {
+    last.bytes.resize(items_.size() * sizeof(T));
+    if (!items_.empty()) std::memcpy(last.bytes.data(), static_cast<const void*>(items_.data()), last.bytes.size());
+  }
+
+  std::vector<T>& items_;
+};
+
+template <class T>
+struct Codec<Changes<T>> {
+  static void put(Writer& out, const Changes<T>& value) { value.put(out); }
+  static void get(Reader& in, Changes<T>& value) { value.get(in); }
 };
 
 /// Aggregates: member by member.
