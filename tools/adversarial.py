@@ -175,7 +175,7 @@ def run_case(path: Path, build: Path, solution_lines: set, hidden_lines: set) ->
     return problems
 
 
-CONCURRENT_LABS = ["01", "03"]  # a lab graded in one process and one graded remotely
+CONCURRENT_LABS = ["01", "03"]  # a lab with callbacks (handles) and one whose objects cross as state
 
 
 def concurrent_grades(build: Path) -> list:

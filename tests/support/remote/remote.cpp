@@ -261,6 +261,7 @@ struct Worker {
     ::close(from_worker[1]);
     if (filter_fd >= 0) ::close(filter_fd);
     pid = child;
+    ++workerEpoch();  // a new worker knows nothing of what crossed to the last one
     requests = to_worker[1];
     replies = from_worker[0];
     signal(SIGPIPE, SIG_IGN);  // a worker gone while we write: write() says so

@@ -393,13 +393,20 @@ struct Codec<std::variant<T...>> {
   }
 };
 
+/// Which worker the checker talks to: a number that changes whenever one starts (remote.cpp).
+/// What is kept of the last crossing (Changes) belongs to one worker; a worker keeps 0 for life.
+inline std::uint64_t& workerEpoch() {
+  static std::uint64_t epoch = 0;
+  return epoch;
+}
+
 /// A vector that crosses as its changes: its size, then the items that differ from the vector
 /// that last crossed this way, in either direction (each with its index). For a large pool of
 /// which a call changes a few items, such as Lab 4's dynamic tree, whose framework calls the
 /// student's functions at every insertion and removal: whole, its nodes made such a test cross
 /// hundreds of megabytes, and take minutes. Both processes keep the last vector, and the pipe
-/// carries one message at a time, each read as it was written, so they keep the same one: a
-/// checker talks to one worker for its whole life (remote.cpp).
+/// carries one message at a time, each read as it was written, so they keep the same one; a
+/// checker forgets its last vector when it starts a new worker (each test has its own).
 ///
 /// An item is unchanged when its bytes are those it had in memory right after the last crossing
 /// (a snapshot, padding included: a copy would not copy the padding, so every item would differ
@@ -452,9 +459,11 @@ class Changes {
     std::vector<T> items;               // the vector that crossed last
     std::vector<unsigned char> bytes;   // the crossing side's items right after it crossed
     std::vector<std::uint64_t> changed;  // scratch: the indices to send
+    std::uint64_t epoch = 0;             // the worker it crossed to or from (workerEpoch())
   };
   static Crossed& crossed() {
     static Crossed last;
+    if (last.epoch != workerEpoch()) last = Crossed{{}, {}, {}, workerEpoch()};
     return last;
   }
   void snapshot(Crossed& last) const {
