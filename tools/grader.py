@@ -1748,15 +1748,19 @@ class Builder:
             log_fd = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
             obj = work / name.replace(".cpp", ".o")
             preprocessed = work / name.replace(".cpp", ".ii")
+            # Inline assembly is refused where the file's code runs beside the tests; a worker's
+            # sandbox holds whatever instructions it runs, so a remote lab's file skips the scan
+            remote = "checker" in self.kit.stages.get(stage, {})
             isolation = self.sandbox.isolation
             header = self.kit.precompiled(stage)
             jail = (lambda cmd: isolation.compiling(cmd, work, self.include, header and header.parent)) \
                 if isolation else (lambda cmd: cmd)
             try:
-                self.sandbox.run(jail(self.kit.preprocess_command(self.include, work / name, preprocessed)),
-                                 slot=slot, cwd=work, timeout=budget, memory=COMPILE_MEMORY,
-                                 stdout=subprocess.DEVNULL, fsize=COMPILE_OUTPUT)
-                budget = min(self.compile_timeout, self.deadline.left())
+                if not remote:
+                    self.sandbox.run(jail(self.kit.preprocess_command(self.include, work / name, preprocessed)),
+                                     slot=slot, cwd=work, timeout=budget, memory=COMPILE_MEMORY,
+                                     stdout=subprocess.DEVNULL, fsize=COMPILE_OUTPUT)
+                    budget = min(self.compile_timeout, self.deadline.left())
                 code, _ = self.sandbox.run(jail(self.kit.compile_command(self.include, work / name, obj, header)),
                                            slot=slot, cwd=work, timeout=budget,
                                            memory=COMPILE_MEMORY, stdout=log_fd, fsize=COMPILE_OUTPUT)
@@ -1776,7 +1780,7 @@ class Builder:
                 raise GradingFailure(f"the compiler of {name} was killed from outside (status {code})")
             if code != 0 or not obj.exists():
                 return Compiled(log=log, error=f"{name} did not compile")
-            assembly = inline_assembly(preprocessed, work / name)
+            assembly = "" if remote else inline_assembly(preprocessed, work / name)
             if assembly:
                 return Compiled(error=f"{name}: refused: inline assembly ({assembly}); lab code "
                                       f"is C++ only")
@@ -2135,7 +2139,7 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
         remote = [stage for stage in stages if "checker" in kit.stages.get(stage, {})]
         if any("checker" in spec for spec in kit.stages.values()):
             sandbox.isolation = Isolation(kit, run_dir, sandbox)
-        visible_jobs, hidden_jobs = [], []
+        visible_jobs, hidden_jobs, plans = [], [], []
         for stage in stages:
             visible = in_course(course, stage, list_tests(kit.build / f"test_{stage}", stage))
             hidden_ref = kit.build / f"test_{stage}_hidden"
@@ -2145,7 +2149,12 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
             result = StageResult(stage, visible + hidden)
             if stage in remote:
                 result.notes.append(sandbox.isolation.describe())
-            exes = build_stage(builder, kit, labs, result, hidden, run_dir)
+            plans.append((result, visible, hidden))
+        # Every lab at once: their compiles share the sandbox's slots, so no slot waits for one
+        # lab's last file while another lab's files are still to compile
+        with concurrent.futures.ThreadPoolExecutor(max_workers=len(plans) or 1) as pool:
+            built = list(pool.map(lambda plan: build_stage(builder, kit, labs, plan[0], plan[2], run_dir), plans))
+        for (result, visible, hidden), exes in zip(plans, built):
             if exes is None:
                 for case in result.tests:
                     case.status, case.output = "not compiled", result.compile_error[-OUTPUT_LIMIT:]
@@ -2154,23 +2163,37 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
                 if None in exes["hidden"]:
                     hidden_jobs += [(exes["hidden"].get(c.unit, exes["hidden"][None]), c) for c in hidden]
             results.append(result)
-        # Every visible test first; hidden tests only after every process of those runs is gone
-        # and their files removed, so no student process can carry a hidden test's text into a
-        # visible output.
         phases = {"build": time.monotonic() - start}  # seconds, in results.json's extra_data
+
+        def hidden_copies() -> list:
+            jobs, copies = [], {}
+            for program, case in hidden_jobs:
+                if program.exe not in copies:
+                    copies[program.exe] = runnable(program.exe, run_dir)
+                jobs.append((Program(copies[program.exe], program.worker, program.batch), case))
+            return jobs
+
         make_homes(sandbox, shared)
-        run_cases(sandbox, visible_jobs, args.seed, args.timeout, deadline, private, shared, workers)
-        phases["visible tests"] = time.monotonic() - start - sum(phases.values())
-        sandbox.finish()
-        jobs, copies = [], {}
-        for program, case in hidden_jobs:
-            if program.exe not in copies:
-                copies[program.exe] = runnable(program.exe, run_dir)
-            jobs.append((Program(copies[program.exe], program.worker, program.batch), case))
-        make_homes(sandbox, shared)
-        run_cases(sandbox, jobs, args.seed, args.timeout, deadline, private, shared, workers)
-        sandbox.finish()
-        phases["hidden tests"] = time.monotonic() - start - sum(phases.values())
+        if all(program.batch for program, _ in visible_jobs + hidden_jobs):
+            # Only checkers, which never load submitted code, and their workers, which can reach
+            # no file, process or other worker: a hidden test's inputs cannot reach a visible
+            # test's output, so both kinds run at once, hidden first (its few long tests then
+            # overlap the many short visible ones)
+            run_cases(sandbox, hidden_copies() + visible_jobs, args.seed, args.timeout, deadline, private,
+                      shared, workers)
+            sandbox.finish()
+            phases["tests"] = time.monotonic() - start - sum(phases.values())
+        else:
+            # Every visible test first; hidden tests only after every process of those runs is
+            # gone and their files removed, so no student process can carry a hidden test's text
+            # into a visible output.
+            run_cases(sandbox, visible_jobs, args.seed, args.timeout, deadline, private, shared, workers)
+            phases["visible tests"] = time.monotonic() - start - sum(phases.values())
+            sandbox.finish()
+            make_homes(sandbox, shared)
+            run_cases(sandbox, hidden_copies(), args.seed, args.timeout, deadline, private, shared, workers)
+            sandbox.finish()
+            phases["hidden tests"] = time.monotonic() - start - sum(phases.values())
         ungraded = [c for r in results for c in r.tests if c.status == "not graded"]
         if ungraded:
             raise GradingFailure(f"{len(ungraded)} tests could not start the sandbox of the submitted "
