@@ -188,21 +188,20 @@ RemoteSystem::RemoteSystem(Reader& in) {
 }
 
 void RemoteSystem::computePositionRate(const VecX& X, Eigen::Ref<VecX> qdot) const {
-  Writer call = callback(handle_, Method::PositionRate, X);
-  Answer answer(call);
-  VecX rate;
-  answer.back(rate);
-  answer.result<void>();
-  assign(qdot, rate);
+  rate(Method::PositionRate, X, qdot);
 }
 
 void RemoteSystem::computeVelocityRate(const VecX& X, Eigen::Ref<VecX> pdot) const {
-  Writer call = callback(handle_, Method::VelocityRate, X);
+  rate(Method::VelocityRate, X, pdot);
+}
+
+void RemoteSystem::rate(Method method, const VecX& X, Eigen::Ref<VecX> out) const {
+  Writer call = callback(handle_, method, X);
   Answer answer(call);
   VecX rate;
   answer.back(rate);
   answer.result<void>();
-  assign(pdot, rate);
+  assign(out, rate);
 }
 
 bool RemoteSystem::computeJacobian(const VecX& X, MatX& J) const {
@@ -267,7 +266,7 @@ struct ForceKinds {
   static std::shared_ptr<const Force> take(Reader& in, std::uint8_t tag) {
     std::uint8_t at = 0;
     std::shared_ptr<const Force> made;
-    ((++at == tag ? (made = std::make_shared<F>(Arg<F>::build(in)), true) : false) || ...);
+    static_cast<void>(((++at == tag ? (made = std::make_shared<F>(Arg<F>::build(in)), true) : false) || ...));
     if (!made) throw WireError("a force of kind " + std::to_string(tag));
     return made;
   }

@@ -214,6 +214,8 @@ class RemoteSystem final : public System {
   bool computeJacobian(const VecX& X, MatX& J) const override;
 
  private:
+  /// A rate (position or velocity) computed by the lent system, through a callback.
+  void rate(Method method, const VecX& X, Eigen::Ref<VecX> out) const;
   std::uint32_t handle_ = 0;
   Index position_size_ = 0;
   Index velocity_size_ = 0;
