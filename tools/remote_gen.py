@@ -86,10 +86,7 @@ def definitions(source: str):
 
 
 def parameter(text: str, name_of: str) -> tuple:
-    """(kind, value type, name): kind 'in', 'inout', 'pointer', 'ref', 'system', or 'unused' (an
-    in-worker function's unnamed parameter, named `unused<i>` by generate())."""
-    if text.startswith("unused "):
-        return "unused", re.sub(r"^const\s+", "", text[len("unused "):]).rstrip("&* ").strip(), ""
+    """(kind, value type, name): kind 'in', 'inout', 'pointer', 'ref' or 'system'."""
     m = NAME_RE.search(text)
     if not m:
         raise Refused(f"{name_of}: a parameter without a name ('{text}')")
@@ -113,6 +110,12 @@ def parameter(text: str, name_of: str) -> tuple:
     return "in", value, name
 
 
+def unused(text: str, index: int) -> tuple:
+    """An in-worker function's unnamed parameter (kind 'unused'): not sent; the worker passes a
+    blank of its value type, named unused<index>."""
+    return "unused", re.sub(r"^const\s+", "", text).rstrip("&* ").strip(), f"unused{index}"
+
+
 def generate(stage_dir: Path, in_worker: list = ()) -> tuple:
     files = sorted(stage_dir.glob("*.cpp"))
     if not files:
@@ -123,8 +126,8 @@ def generate(stage_dir: Path, in_worker: list = ()) -> tuple:
         includes |= set(INCLUDE_RE.findall(source))
         for ret, name, params, const in definitions(source):
             if f in in_worker:  # an unnamed parameter is unused: it stays behind
-                parsed = [(kind, t, f"unused{i}" if kind == "unused" else n) for i, (kind, t, n) in enumerate(
-                    parameter(p if NAME_RE.search(p) else f"unused {p}", name) for p in split_top(params))]
+                parsed = [parameter(p, name) if NAME_RE.search(p) else unused(p, i)
+                          for i, p in enumerate(split_top(params))]
                 functions.append((ret, name, params, const, parsed))
                 continue
             # A parameter the stub leaves unnamed (its name commented out) gets one: the proxy sends it.
