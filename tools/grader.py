@@ -2025,8 +2025,8 @@ def runnable(path: Path, run_dir: Path) -> Path:
 def build_remote_stage(builder: Builder, kit: Kit, result: StageResult, objects: dict, hidden: list,
                        run_dir: Path) -> dict:
     """build_stage() for a remote stage: the instructor's checkers run the tests, and the
-    submitted objects are linked into workers only (all of the lab's files, and for partial credit
-    each file with the reference of the others), in the run folder."""
+    submitted objects are linked into a worker only, in the run folder. Partial credit is
+    second_chances(): exes["alone"] names the files whose tests may run again."""
     stage, spec = result.stage, kit.stages[result.stage]
     worker = run_dir / f"worker_{stage}"
     error = builder.link(stage, "worker", list(objects.values()), worker)
@@ -2040,23 +2040,58 @@ def build_remote_stage(builder: Builder, kit: Kit, result: StageResult, objects:
     exes = {kind: {None: Program(checker, worker, batch=True)} for kind, checker in checkers.items()}
     exes.setdefault("hidden", {})
     reference = spec.get("reference", {})
-    units = sorted({c.unit for c in result.tests if c.unit in objects and c.unit in reference})
+    exes["alone"] = {unit: objects[unit] for unit in objects if unit in reference}
+    return exes
 
-    def link(unit):
-        path = run_dir / f"worker_{stage}_{unit}"
+
+def second_chances(builder: Builder, kit: Kit, plans: list, built: list, run_dir: Path) -> list:
+    """Partial credit in a remote lab: a test of one lab file that failed with all of the
+    student's files runs again with that file and the reference's objects of the lab's other
+    files, so a finished file earns its points whatever else is unwritten. Links a worker per
+    such file (a file that does not link alone is noted, and its tests keep their first run) and
+    returns [(program, fresh copy of the case, the case)] to run, the program's checker as in
+    `exes` (a hidden one not yet in the run folder); a submission whose tests all pass links none."""
+    wanted = {}
+    for (result, _, hidden), exes in zip(plans, built):
+        if exes is None or "alone" not in exes:
+            continue
+        for case in result.tests:
+            kind = "hidden" if any(case is h for h in hidden) else "tests"
+            if case.unit in exes["alone"] and None in exes[kind] and \
+                    case.status not in ("passed", "not run", "not compiled"):
+                key = (id(result), case.unit)
+                wanted.setdefault(key, (result, case.unit, exes["alone"][case.unit], []))[3].append(
+                    (exes[kind][None].exe, case))
+
+    def link(want):
+        result, unit, obj, _ = want
+        reference = kit.stages[result.stage]["reference"]
+        path = run_dir / f"worker_{result.stage}_{unit}"
         others = [reference[u] for u in sorted(reference) if u != unit]
-        return builder.link(stage, "worker", [objects[unit]], path, others), path
+        return builder.link(result.stage, "worker", [obj], path, others), path
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=len(builder.sandbox.slots)) as pool:
-        linked = list(pool.map(link, units))
-    for unit, (error, path) in zip(units, linked):
+        linked = list(pool.map(link, wanted.values()))
+    jobs = []
+    for (result, unit, _, cases), (error, path) in zip(wanted.values(), linked):
         if error:
             result.notes.append(alone_note(unit, error))
             continue
         os.chmod(path, 0o755)
-        for kind, checker in checkers.items():
-            exes[kind][unit] = Program(checker, path, batch=True)
-    return exes
+        for checker, case in cases:
+            fresh = TestCase(case.stage, case.name, case.tags, course_points=case.course_points,
+                             course_hidden=case.course_hidden)
+            jobs.append((Program(checker, path, batch=True), fresh, case))
+    return jobs
+
+
+def take_second_chances(chances: list) -> None:
+    """A test passes when it passed with all of the student's files or with its own file alone;
+    a test that failed both ways reports its second run (its file alone, as its note says)."""
+    for _, fresh, case in chances:
+        fresh.seconds += case.seconds
+        case.status, case.output, case.seconds = fresh.status, fresh.output, fresh.seconds
+        case.checks, case.captured = fresh.checks, fresh.captured
 
 
 def alone_note(unit: str, error: str) -> str:
@@ -2165,13 +2200,15 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
             results.append(result)
         phases = {"build": time.monotonic() - start}  # seconds, in results.json's extra_data
 
-        def hidden_copies() -> list:
-            jobs, copies = [], {}
-            for program, case in hidden_jobs:
-                if program.exe not in copies:
+        copies = {}  # a hidden checker -> its copy in the run folder
+
+        def hidden_copies(jobs) -> list:
+            moved = []
+            for program, case in jobs:
+                if program.exe.parent != run_dir and program.exe not in copies:
                     copies[program.exe] = runnable(program.exe, run_dir)
-                jobs.append((Program(copies[program.exe], program.worker, program.batch), case))
-            return jobs
+                moved.append((Program(copies.get(program.exe, program.exe), program.worker, program.batch), case))
+            return moved
 
         make_homes(sandbox, shared)
         if all(program.batch for program, _ in visible_jobs + hidden_jobs):
@@ -2179,10 +2216,16 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
             # no file, process or other worker: a hidden test's inputs cannot reach a visible
             # test's output, so both kinds run at once, hidden first (its few long tests then
             # overlap the many short visible ones)
-            run_cases(sandbox, hidden_copies() + visible_jobs, args.seed, args.timeout, deadline, private,
-                      shared, workers)
-            sandbox.finish()
+            run_cases(sandbox, hidden_copies(hidden_jobs) + visible_jobs, args.seed, args.timeout, deadline,
+                      private, shared, workers)
             phases["tests"] = time.monotonic() - start - sum(phases.values())
+            chances = second_chances(builder, kit, plans, built, run_dir)
+            if chances:
+                run_cases(sandbox, hidden_copies([(p, fresh) for p, fresh, _ in chances]), args.seed,
+                          args.timeout, deadline, private, shared, workers)
+                take_second_chances(chances)
+                phases["partial credit"] = time.monotonic() - start - sum(phases.values())
+            sandbox.finish()
         else:
             # Every visible test first; hidden tests only after every process of those runs is
             # gone and their files removed, so no student process can carry a hidden test's text
@@ -2191,7 +2234,7 @@ def grade_one(args, kit: Kit, sandbox: Sandbox, submission: Path, out: Path, cou
             phases["visible tests"] = time.monotonic() - start - sum(phases.values())
             sandbox.finish()
             make_homes(sandbox, shared)
-            run_cases(sandbox, hidden_copies(), args.seed, args.timeout, deadline, private, shared, workers)
+            run_cases(sandbox, hidden_copies(hidden_jobs), args.seed, args.timeout, deadline, private, shared, workers)
             sandbox.finish()
             phases["hidden tests"] = time.monotonic() - start - sum(phases.values())
         ungraded = [c for r in results for c in r.tests if c.status == "not graded"]
