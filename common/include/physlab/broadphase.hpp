@@ -476,6 +476,8 @@ class IncrementalBroadPhase final : public BroadPhase {
   void moveValid(int id, const Aabb& box);
   void markDirty(int id);
   Aabb fatten(const Aabb& box, const Vec3& displacement) const;
+  template <int>
+  friend struct remote::Access;  // in a grade, computePairs() runs in the worker: the state crosses
 
   double margin_;
   DynamicAabbTree tree_;

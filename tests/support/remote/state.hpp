@@ -174,6 +174,23 @@ struct Access<0> {
     f(tree.free_);
     f(tree.leaves_);
   }
+  // A step runs in the worker (incremental_pairs.cpp, IN_WORKER): everything it reads or leaves
+  // but its scratch lists (leaving_, kept_, found_), which it clears before use
+  template <class F>
+  static void visit(IncrementalBroadPhase& phase, F&& f) {
+    visitBase(phase, f);
+    f(phase.margin_);
+    f(phase.tree_);
+    f(phase.tight_);
+    f(phase.fat_);
+    f(phase.leaf_);
+    f(phase.dirty_);
+    f(phase.dirty_list_);
+    f(phase.free_ids_);
+    f(phase.pair_set_);
+    f(phase.reinsertions_);
+    f(phase.last_reinsertions_);
+  }
 
  private:
   template <class F>
