@@ -51,6 +51,11 @@
 
 namespace physlab {
 
+namespace remote {
+template <int>
+struct Access;  // the grader's wire (tests/support/remote): what crosses to a grading worker
+}  // namespace remote
+
 /// One row of a contact problem: the direction d at the point p, between bodies a and b (indices
 /// into the bodies). A normal row has d = the contact normal (from B to A); a friction row a unit
 /// tangent. An impulse \f$\lambda\f$ on the row is \f$\lambda d\f$ on A at p and \f$-\lambda d\f$ on B.
@@ -212,6 +217,8 @@ class LcpContactSolver : public RestingContactSolver {
   static double normalVelocity(const std::vector<ContactBody>& bodies, const Contact& c);
   // A colliding point's normal bias aims at its bounce when that is faster than the push apart.
   static double bounceBias(double bias, const std::vector<ContactBody>& bodies, const Contact& c);
+  template <int>
+  friend struct remote::Access;  // in a grade, solve() runs in the worker: the state crosses with it
 
   RestingSettings settings_;
   std::vector<PointRows> points_;

@@ -15,6 +15,7 @@
 #include "physlab/broadphase.hpp"
 #include "physlab/collision.hpp"
 #include "physlab/error.hpp"
+#include "physlab/resting.hpp"
 #include "physlab/rigid.hpp"
 #include "physlab/soft_step.hpp"
 #include "physlab/springs.hpp"
@@ -49,6 +50,14 @@ struct Access<0> {
     f(solver.moved_);
   }
   static SoftStepSolver blank(std::common_type<SoftStepSolver>) { return SoftStepSolver(SoftStepSettings{}); }
+  // A step runs in the worker (resting_solve.cpp, IN_WORKER): its settings and what it leaves
+  // (the residual); the rows, loads and matrix-free points are rebuilt at every step
+  template <class F>
+  static void visit(LcpContactSolver& solver, F&& f) {
+    f(solver.settings_);
+    f(solver.last_residual_);
+  }
+  static LcpContactSolver blank(std::common_type<LcpContactSolver>) { return LcpContactSolver(RestingSettings{}); }
   /// The force evaluations a worker made on its copy of `system` (handles.hpp).
   static void addEvaluations(const System& system, long evaluations) { system.force_evaluations_ += evaluations; }
   static RigidBody blank(std::common_type<RigidBody>) { return RigidBody(1.0, Mat3::Identity()); }
