@@ -500,6 +500,16 @@ class Sandbox:
         return ["prlimit", f"--as={memory}", f"--nproc={nproc}", f"--fsize={fsize}",
                 f"--cpu={int(cpu_seconds) + 1}", "--core=0", "--nofile=256", "--"]
 
+    def processor(self, slot: int) -> list:
+        """A prefix that keeps a command and its children on one processor of those this run may
+        use, chosen by `slot`: a checker and its worker take turns on their pipes, so on one
+        processor each reply wakes its reader without a hand-over between processors (Lab 1's
+        Kepler test, 126,000 calls: 3.1 s to 2.1 s)."""
+        cpus = sorted(os.sched_getaffinity(0))
+        if len(cpus) < 2 or not shutil.which("taskset"):
+            return []
+        return ["taskset", "--cpu-list", str(cpus[slot % len(cpus)])]
+
     def spawn(self, cmd: list, ids, **options) -> subprocess.Popen:
         """Starts cmd in a session of its own, as the sandbox user `ids` (uid, gid) if any; the
         sweep leaves it alone until run() or end() has waited for it."""
@@ -878,7 +888,8 @@ def run_batch_once(sandbox: Sandbox, slot: int, program: Program, cases: list, s
             env.update(sandbox.isolation.environment(program.worker))
         limits = sandbox.limits(TEST_MEMORY, timeout * len(cases), min(OUTPUT_FILE_LIMIT * len(cases), 64 << 20))
         try:
-            proc = sandbox.spawn(limits + cmd, sandbox.ids(slot), cwd=homes / f"home-{slot}", env=env,
+            pinned = sandbox.processor(slot) if program.worker is not None else []
+            proc = sandbox.spawn(pinned + limits + cmd, sandbox.ids(slot), cwd=homes / f"home-{slot}", env=env,
                                  stdout=out_fd, stderr=out_fd, pass_fds=(records_write,))
         finally:
             for fd in (records_write, out_fd):
