@@ -39,7 +39,8 @@ TEST_CASE("textbook scenes, sequential impulses: a ramp holds below atan(mu), sl
   CHECK(checkScenes({"ramp", "thrown ball"}) == 3);
 }
 
-TEST_CASE("textbook scenes, sequential impulses: a 100:1 heavy box stays on a light one, a 5 cm overlap is pushed out without a jump, dominoes fall in order", "[lab05][pts=2][sec=2][sec=3][sec=4][sec=5]") {
+TEST_CASE("textbook scenes, sequential impulses: a 100:1 heavy box stays on a light one, a 5 cm overlap is pushed out without a jump, dominoes fall in order", "[lab05][pts=2][sec=2][sec=3][sec=4][sec=5][sec=10]") {
+  // Thin dominoes move more than their inner radius in a step as they fall: continuous collision
   CHECK(checkScenes({"heavy on light", "overlap recovery", "dominoes"}) == 3);
 }
 

@@ -38,6 +38,12 @@
 /// Settings::position_correction, with Settings::correction_sweeps Gauss-Seidel sweeps over the
 /// points (Box2D's position solver, linearised; see the Lab 5 handout, section 8). It changes
 /// positions and orientations only: no velocity, so no kinetic energy.
+/// A step sees only where bodies are at its start and end, so a body fast against its size can
+/// pass through another between two steps (tunnelling). With Settings::continuous the integrate
+/// phase first sweeps each fast body (its points may move more than its inner radius) over
+/// the step against the other bodies with Lab 4's conservative advancement, and moves it only
+/// until just into the first one it would hit (continuousAdvance(), section 10): the next step
+/// finds that contact and answers it. Slow bodies cost one comparison each.
 /// Given a RestingContactSolver (Lab 6), the respond phase hands it the points that are not
 /// colliding (every point, when the solver bounces() itself); without one (Lab 5) the impulse
 /// solver handles them too, with \f$\epsilon = 0\f$.
@@ -120,6 +126,10 @@ struct Settings {
   double position_correction = 0.2;   ///< impulse methods: fraction of each point's overlap beyond the slop removed per step by moving and turning the bodies, in [0, 1] (0: off)
   double slop = 0.0002;               ///< overlap the position correction leaves alone [m]
   int correction_sweeps = 8;          ///< Gauss-Seidel sweeps of the position correction over the points, alternately forward and backward, >= 1
+  /// Continuous collision (section 10): a body whose points may move more than its inner radius
+  /// in a step is swept against the other bodies (not the planes: a half-space cannot be passed
+  /// through) and stopped just into the first it would hit, continuousAdvance()
+  bool continuous = true;
 
   /// One line naming every setting and its value.
   std::string toString() const;
@@ -270,6 +280,18 @@ int solveSimultaneous(std::vector<ContactBody>& bodies, std::vector<Contact>& co
 /// or not finite, v_rel is not finite, n is not a finite unit vector, or k is not positive and
 /// finite. Handout: Lab 5, section 7.
 Vec3 penaltyForce(double depth, double v_rel, const Vec3& n, double k, double d);
+
+/// Continuous collision (section 10): how long a fast body moves in a step of size h [s]. `hits`
+/// are the times of impact of its sweep against the other bodies (Lab 4's conservative
+/// advancement; +infinity for a body it misses), each in [0, h] or +infinity. A hit at exactly 0
+/// is a pair already touching, which the contact solver answers: it does not stop the body. With
+/// t the earliest hit after 0, the body moves for t + overlap / speed (on into the other body by
+/// about `overlap`, so that the next step finds the contact and answers it), at most h; h when no
+/// hit comes after 0, or when speed is 0 (the body does not move). `speed` is the bound on how fast
+/// any of its points moves [m/s], `overlap` the depth to reach [m]. InvalidInput when h is not
+/// positive and finite, speed or overlap is negative or not finite, or a hit is NaN, negative,
+/// or past h (naming the hit). Allocates nothing unless it throws. Handout: Lab 5, section 10.
+double continuousAdvance(const std::vector<double>& hits, double h, double speed, double overlap);
 ///@}
 
 // ---------------------------------------------------------------------------------------------
@@ -380,6 +402,8 @@ class World {
   void respond(double h);
   void solveRestingContacts(double h);
   void integrate(double h);
+  // Continuous collision (section 10): how long body i moves in a step of h
+  double sweptStep(int i, double h);
   void correctPositions(double h);
   void computeDiagnostics();
   void loadContactBodies();
@@ -419,6 +443,7 @@ class World {
   std::vector<Mat3> inv_inertia_body_;     // I_body^-1 once, 0 when fixed
   PairList found_;                         // the broad phase's pairs, refilled in place
   std::vector<int> resting_;
+  std::vector<double> advance_, hits_;     // each body's time to move this step; a fast body's times of impact
   // The position correction's points and the bodies' moves and turns, refilled in place
   struct CorrectionPoint {
     int a, b;

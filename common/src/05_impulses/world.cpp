@@ -29,6 +29,17 @@ class PhaseTimer {
 
 bool isPlane(const BodyDescription& body) { return std::holds_alternative<Plane>(body.shape); }
 
+// Continuous collision (section 10): a body is fast when its points may move more than its
+// inner radius in a step. A slower one, passing through another body, overlaps it at some step
+// (their overlap along the path is at least twice its inner radius deep), where the narrow
+// phase finds it
+constexpr double kFastFraction = 1.0;
+// The sweep stops this close to the body it would hit [m] (conservative advancement's tolerance)
+constexpr double kSweepTolerance = 1e-4;
+// ... and a stopped body moves on into it by this much, above the tolerance, so that the next
+// step finds the contact and answers it (position correction removes the rest) [m]
+constexpr double kSweepOverlap = 1e-3;
+
 void validateBody(const BodyDescription& body, int i) {
   const std::string name = "body " + std::to_string(i);
   if (!(std::isfinite(body.epsilon) && body.epsilon >= 0.0 && body.epsilon <= 1.0)) {
@@ -124,7 +135,7 @@ std::string Settings::toString() const {
       << " penalty_k=" << penalty_k << " penalty_d=" << penalty_d
       << " broad_phase=" << (use_broad_phase ? "incremental tree" : "all pairs")
       << " position_correction=" << position_correction << " slop=" << slop
-      << " correction_sweeps=" << correction_sweeps;
+      << " correction_sweeps=" << correction_sweeps << " continuous=" << (continuous ? "on" : "off");
   return out.str();
 }
 
@@ -462,13 +473,48 @@ void World::integrate(double h) {
   PhaseTimer timer(times_.integrate);
   // A sub-stepping resting solver has moved the bodies already
   if (resting_solver_ && resting_solver_->placeBodies(states_)) return;
+  // How long each body moves: h, or for a fast body until just into the first body it would hit
+  // (every sweep from the states at the start of the step, before anyone moves)
+  advance_.assign(bodies_.size(), h);
+  if (settings_.continuous) {
+    for (const int i : bounded_) {
+      if (!bodies_[i].fixed) advance_[i] = sweptStep(i, h);
+    }
+  }
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     if (bodies_[i].fixed) continue;
     // Symplectic Euler: the new velocities move the body over the step
     BodyState& s = states_[i];
-    s.x += h * s.P / bodies_[i].mass;
-    if (!s.L.isZero()) s.q = exponentialUpdate(s.q, angularVelocity(static_cast<int>(i)), h).normalized();
+    const double t = advance_[i];
+    s.x += t * s.P / bodies_[i].mass;
+    if (!s.L.isZero()) s.q = exponentialUpdate(s.q, angularVelocity(static_cast<int>(i)), t).normalized();
   }
+}
+
+double World::sweptStep(int i, double h) {
+  const BodyDescription& body = bodies_[i];
+  const BodyState& s = states_[i];
+  const Motion motion{s.P / body.mass, s.L.isZero() ? Vec3::Zero() : angularVelocity(i)};
+  const double rho = boundingRadius(body.shape);
+  const double speed = motion.v.norm() + motion.omega.norm() * rho;
+  if (!(speed * h > kFastFraction * innerRadius(body.shape))) return h;
+  // The times of impact against every body the sweep can reach (planes: none can be passed)
+  hits_.clear();
+  const Pose pose{s.x, s.q};
+  for (const int j : bounded_) {
+    if (j == i) continue;
+    const BodyState& o = states_[j];
+    const Motion other = bodies_[j].fixed ? Motion{}
+                                          : Motion{o.P / bodies_[j].mass, o.L.isZero() ? Vec3::Zero() : angularVelocity(j)};
+    const double rho_j = boundingRadius(bodies_[j].shape);
+    const double reach = rho + rho_j + h * (speed + other.v.norm() + other.omega.norm() * rho_j);
+    if ((o.x - s.x).squaredNorm() > reach * reach) continue;
+    const ToiResult toi =
+        toiConservativeAdvancement(body.shape, pose, motion, bodies_[j].shape, Pose{o.x, o.q}, other, h, kSweepTolerance);
+    if (toi.hit) hits_.push_back(toi.time);
+  }
+  // Nothing in the way: the whole step, without asking
+  return hits_.empty() ? h : continuousAdvance(hits_, h, speed, kSweepOverlap);
 }
 
 void World::correctPositions(double h) {
