@@ -462,6 +462,12 @@ class IncrementalBroadPhase final : public BroadPhase {
   long fatPairs() const { return static_cast<long>(pair_set_.size()); }
   /// The tree, for tests and drawing.
   const DynamicAabbTree& tree() const { return tree_; }
+  /// Calls visit(id) for every live id whose fat box overlaps `box` (touching included): the
+  /// World's continuous collision finds what a fast body's sweep may reach this way.
+  template <class Visit>
+  void query(const Aabb& box, Visit&& visit) {
+    tree_.query(box, visit);
+  }
 
  protected:
   /// Box i is id i: removes ids >= boxes.size(), adds missing ones, moves the rest, updates.

@@ -437,13 +437,19 @@ class World {
   std::vector<LastPair> last_pairs_;
   std::vector<int> bounded_, planes_;
   std::vector<Aabb> boxes_;
-  std::unique_ptr<BroadPhase> broad_phase_;
+  std::unique_ptr<IncrementalBroadPhase> broad_phase_;
   std::shared_ptr<RestingContactSolver> resting_solver_;
   std::vector<Contact> colliding_;
   std::vector<Mat3> inv_inertia_body_;     // I_body^-1 once, 0 when fixed
   PairList found_;                         // the broad phase's pairs, refilled in place
   std::vector<int> resting_;
-  std::vector<double> advance_, hits_;     // each body's time to move this step; a fast body's times of impact
+  // Continuous collision: each body's bounding and inner radius (0 for a plane), its motion at the
+  // step's start, its time to move this step; a fast body's times of impact
+  std::vector<double> radius_, inner_;
+  std::vector<Motion> motions_;
+  std::vector<double> advance_, hits_;
+  std::vector<int> reachable_;  // the bodies a fast body's sweep may reach (broad phase ids)
+  double largest_travel_ = 0.0;  // the farthest any body's point moves this step [m]
   // The position correction's points and the bodies' moves and turns, refilled in place
   struct CorrectionPoint {
     int a, b;

@@ -158,6 +158,8 @@ World::World(Scene scene, Settings settings, std::shared_ptr<RestingContactSolve
     if (bodies_[i].fixed) states_[i].P = states_[i].L = Vec3::Zero();
     (isPlane(bodies_[i]) ? planes_ : bounded_).push_back(i);
     inv_inertia_body_.push_back(bodies_[i].fixed ? Mat3(Mat3::Zero()) : Mat3(bodies_[i].inertia_body.inverse()));
+    radius_.push_back(isPlane(bodies_[i]) ? 0.0 : boundingRadius(bodies_[i].shape));
+    inner_.push_back(isPlane(bodies_[i]) ? 0.0 : innerRadius(bodies_[i].shape));
   }
   broad_phase_ = std::make_unique<IncrementalBroadPhase>();
 }
@@ -477,6 +479,14 @@ void World::integrate(double h) {
   // (every sweep from the states at the start of the step, before anyone moves)
   advance_.assign(bodies_.size(), h);
   if (settings_.continuous) {
+    motions_.resize(bodies_.size());
+    largest_travel_ = 0.0;
+    for (const int i : bounded_) {
+      const BodyState& s = states_[i];
+      motions_[i] = bodies_[i].fixed ? Motion{}
+                                     : Motion{s.P / bodies_[i].mass, s.L.isZero() ? Vec3::Zero() : angularVelocity(i)};
+      largest_travel_ = std::max(largest_travel_, h * (motions_[i].v.norm() + motions_[i].omega.norm() * radius_[i]));
+    }
     for (const int i : bounded_) {
       if (!bodies_[i].fixed) advance_[i] = sweptStep(i, h);
     }
@@ -492,25 +502,42 @@ void World::integrate(double h) {
 }
 
 double World::sweptStep(int i, double h) {
-  const BodyDescription& body = bodies_[i];
-  const BodyState& s = states_[i];
-  const Motion motion{s.P / body.mass, s.L.isZero() ? Vec3::Zero() : angularVelocity(i)};
-  const double rho = boundingRadius(body.shape);
+  const Motion& motion = motions_[i];
+  const double rho = radius_[i];
   const double speed = motion.v.norm() + motion.omega.norm() * rho;
-  if (!(speed * h > kFastFraction * innerRadius(body.shape))) return h;
-  // The times of impact against every body the sweep can reach (planes: none can be passed)
+  if (!(speed * h > kFastFraction * inner_[i])) return h;
+  // The bodies the sweep may reach (planes: none can be passed): with the broad phase, those
+  // whose box at the step's start is within the largest travel of any body of the box the sweep
+  // covers; without it, every body
+  const BodyState& s = states_[i];
+  reachable_.clear();
+  if (settings_.use_broad_phase && bounded_.size() >= 2) {
+    const Vec3 reach = Vec3::Constant(rho + h * motion.omega.norm() * rho + largest_travel_);
+    const Vec3 end = s.x + h * motion.v;
+    broad_phase_->query({s.x.cwiseMin(end) - reach, s.x.cwiseMax(end) + reach},
+                        [&](int id) { reachable_.push_back(bounded_[id]); });
+  } else {
+    reachable_ = bounded_;
+  }
+  // The times of impact against each
   hits_.clear();
   const Pose pose{s.x, s.q};
-  for (const int j : bounded_) {
+  for (const int j : reachable_) {
     if (j == i) continue;
+    const Motion& other = motions_[j];
+    // Slow against this one (bodies falling together): the narrow phase finds any overlap of theirs
+    const double turning = h * (motion.omega.norm() * rho + other.omega.norm() * radius_[j]);
+    const Vec3 d = h * (motion.v - other.v);
+    if (!(d.norm() + turning > kFastFraction * inner_[i])) continue;
+    // Out of reach: the other centre, seen from this one moving relative to it, stays farther from
+    // the swept segment than both bounding radii and the turning of both
     const BodyState& o = states_[j];
-    const Motion other = bodies_[j].fixed ? Motion{}
-                                          : Motion{o.P / bodies_[j].mass, o.L.isZero() ? Vec3::Zero() : angularVelocity(j)};
-    const double rho_j = boundingRadius(bodies_[j].shape);
-    const double reach = rho + rho_j + h * (speed + other.v.norm() + other.omega.norm() * rho_j);
-    if ((o.x - s.x).squaredNorm() > reach * reach) continue;
+    const Vec3 c = o.x - s.x;
+    const double along = d.squaredNorm() > 0.0 ? std::clamp(c.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    const double reach = rho + radius_[j] + turning;
+    if ((c - along * d).squaredNorm() > reach * reach) continue;
     const ToiResult toi =
-        toiConservativeAdvancement(body.shape, pose, motion, bodies_[j].shape, Pose{o.x, o.q}, other, h, kSweepTolerance);
+        toiConservativeAdvancement(bodies_[i].shape, pose, motion, bodies_[j].shape, Pose{o.x, o.q}, other, h, kSweepTolerance);
     if (toi.hit) hits_.push_back(toi.time);
   }
   // Nothing in the way: the whole step, without asking
