@@ -142,6 +142,7 @@ class SoftStepSolver : public RestingContactSolver {
             const std::vector<BodyDescription>& descriptions, const std::vector<BodyState>& states, const Vec3& gravity,
             double h) override;
   bool placeBodies(std::vector<BodyState>& states) override;
+  bool substeps() const override { return true; }
   const SoftStepSettings& settings() const { return settings_; }  ///< the settings
 
  private:

@@ -130,6 +130,12 @@ struct Settings {
   /// in a step is swept against the other bodies (not the planes: a half-space cannot be passed
   /// through) and stopped just into the first it would hit, continuousAdvance()
   bool continuous = true;
+  /// Shock propagation (section 11): after the response, the contacts are solved once more level
+  /// by level up from the fixed bodies (level 1 touches a fixed body, level 2 touches level 1, ...),
+  /// each level by the same solver with the levels below held still, so that a stack or a heavy
+  /// body on a light one stands on what carries it. A response the solver converged is left as
+  /// it was. Not with the penalty method, nor with a resting solver that substeps().
+  bool shock_propagation = true;
 
   /// One line naming every setting and its value.
   std::string toString() const;
@@ -308,7 +314,8 @@ struct Diagnostics {
   int contacts = 0;                 ///< contact points found this step
   int colliding = 0;                ///< of which colliding
   int resting = 0;                  ///< of which resting
-  int iterations = 0;               ///< solver sweeps this step (impulses, plus the resting solver's)
+  int iterations = 0;               ///< solver sweeps this step (impulses, the resting solver's and the shock propagation's)
+  int levels = 0;                   ///< levels the shock propagation solved this step (0: none)
 };
 
 /// Seconds spent in each phase since the World was made (or resetTimers()).
@@ -360,6 +367,9 @@ class RestingContactSolver {
     (void)states;
     return false;
   }
+  /// True when solve() moves the bodies in substeps (placeBodies() then returns true): the World
+  /// runs no shock propagation after it, as the substeps have moved the bodies with their velocities.
+  virtual bool substeps() const { return false; }
 };
 
 /// Rigid bodies with impulse-based collision response.
@@ -401,6 +411,9 @@ class World {
   void classifyContacts();
   void respond(double h);
   void solveRestingContacts(double h);
+  // Shock propagation (section 11): the contacts solved again level by level from the ground up
+  void propagateShock(double h);
+  void findLevels();
   void integrate(double h);
   // Continuous collision (section 10): how long body i moves in a step of h
   double sweptStep(int i, double h);
@@ -460,6 +473,15 @@ class World {
     double inv_k;         // 1 / (n . K n), the push that opens the separation by 1 m [kg]
   };
   std::vector<CorrectionPoint> correction_;
+  // Shock propagation: each body's level (0 fixed, -1 not carried by a fixed body), the contact
+  // graph (each body's neighbours from first_[i] to first_[i + 1]), the bodies and contacts by
+  // level (level L from by_level_[L] to by_level_[L + 1]), the bodies with the lower levels held
+  // still, and one level's contacts as the solver takes them
+  std::vector<int> level_, first_, neighbours_, queue_;
+  std::vector<int> bodies_by_level_, body_level_start_, contacts_by_level_, contact_level_start_;
+  std::vector<ContactBody> held_;
+  std::vector<Contact> level_contacts_;
+  std::vector<int> level_points_;
   std::vector<Vec3> shift_, turn_;
   Diagnostics diagnostics_;
   PhaseTimes times_;

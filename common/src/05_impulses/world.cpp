@@ -135,7 +135,8 @@ std::string Settings::toString() const {
       << " penalty_k=" << penalty_k << " penalty_d=" << penalty_d
       << " broad_phase=" << (use_broad_phase ? "incremental tree" : "all pairs")
       << " position_correction=" << position_correction << " slop=" << slop
-      << " correction_sweeps=" << correction_sweeps << " continuous=" << (continuous ? "on" : "off");
+      << " correction_sweeps=" << correction_sweeps << " continuous=" << (continuous ? "on" : "off")
+      << " shock_propagation=" << (shock_propagation ? "on" : "off");
   return out.str();
 }
 
@@ -406,6 +407,7 @@ const World::LastImpulse* World::lastImpulse(const Contact& c) const {
 
 void World::respond(double h) {
   diagnostics_.iterations = 0;
+  diagnostics_.levels = 0;
   if (contacts_.empty()) return;
   {
     PhaseTimer timer(times_.respond);
@@ -443,8 +445,116 @@ void World::respond(double h) {
     }
   }
   solveRestingContacts(h);
+  if (settings_.shock_propagation && settings_.method != ResponseMethod::Penalty &&
+      !(resting_solver_ && resting_solver_->substeps())) {
+    PhaseTimer timer(times_.respond);
+    propagateShock(h);
+  }
   PhaseTimer timer(times_.respond);
   storeContactBodies();
+}
+
+void World::findLevels() {
+  // The contact graph, each body's neighbours together (counting sort by body)
+  const int n = static_cast<int>(bodies_.size());
+  first_.assign(static_cast<std::size_t>(n) + 2, 0);
+  for (const Contact& c : contacts_) {
+    ++first_[static_cast<std::size_t>(c.a) + 2];
+    ++first_[static_cast<std::size_t>(c.b) + 2];
+  }
+  for (int i = 2; i < n + 2; ++i) first_[i] += first_[i - 1];
+  neighbours_.resize(2 * contacts_.size());
+  for (const Contact& c : contacts_) {
+    neighbours_[first_[static_cast<std::size_t>(c.a) + 1]++] = c.b;
+    neighbours_[first_[static_cast<std::size_t>(c.b) + 1]++] = c.a;
+  }
+  // Breadth first from the fixed bodies: a body's level is one more than the lowest it touches
+  level_.assign(static_cast<std::size_t>(n), -1);
+  queue_.clear();
+  for (int i = 0; i < n; ++i) {
+    if (bodies_[i].fixed && first_[i + 1] > first_[i]) {
+      level_[i] = 0;
+      queue_.push_back(i);
+    }
+  }
+  for (std::size_t next = 0; next < queue_.size(); ++next) {
+    const int i = queue_[next];
+    for (int k = first_[i]; k < first_[i + 1]; ++k) {
+      const int j = neighbours_[k];
+      if (level_[j] < 0 && !bodies_[j].fixed) {
+        level_[j] = level_[i] + 1;
+        queue_.push_back(j);
+      }
+    }
+  }
+  // The breadth-first order lists the bodies by level; a contact belongs to the higher of its
+  // bodies' levels (one of level 0 and one not carried: none)
+  const int top = queue_.empty() ? 0 : level_[queue_.back()];
+  bodies_by_level_ = queue_;
+  body_level_start_.assign(static_cast<std::size_t>(top) + 2, 0);
+  for (const int i : queue_) ++body_level_start_[static_cast<std::size_t>(level_[i]) + 1];
+  contact_level_start_.assign(static_cast<std::size_t>(top) + 2, 0);
+  for (const Contact& c : contacts_) {
+    if (level_[c.a] >= 0 && level_[c.b] >= 0) ++contact_level_start_[std::max(level_[c.a], level_[c.b]) + 1];
+  }
+  for (int l = 1; l <= top + 1; ++l) {
+    body_level_start_[l] += body_level_start_[l - 1];
+    contact_level_start_[l] += contact_level_start_[l - 1];
+  }
+  contacts_by_level_.resize(static_cast<std::size_t>(contact_level_start_[top + 1]));
+  level_points_.assign(contact_level_start_.begin(), contact_level_start_.end());
+  for (int k = 0; k < static_cast<int>(contacts_.size()); ++k) {
+    const Contact& c = contacts_[k];
+    if (level_[c.a] >= 0 && level_[c.b] >= 0) contacts_by_level_[level_points_[std::max(level_[c.a], level_[c.b])]++] = k;
+  }
+}
+
+void World::propagateShock(double h) {
+  findLevels();
+  const int top = static_cast<int>(body_level_start_.size()) - 2;
+  held_ = contact_bodies_;
+  for (int level = 1; level <= top; ++level) {
+    // The level below is held still from here on: no impulse changes its velocities
+    for (int k = body_level_start_[level - 1]; k < body_level_start_[level]; ++k) {
+      ContactBody& held = held_[bodies_by_level_[k]];
+      held.inv_mass = 0.0;
+      held.I_inv_world = Mat3::Zero();
+    }
+    // This level's points, their impulses taken back: the solver starts from them (warm) and
+    // applies them again, so that it continues the response with the levels below held
+    level_points_.clear();
+    for (int k = contact_level_start_[level]; k < contact_level_start_[level + 1]; ++k) {
+      const int index = contacts_by_level_[k];
+      const Contact& c = contacts_[index];
+      // Points the impulses answered stay answered, when a resting solver takes the others
+      if (resting_solver_ && !resting_solver_->bounces() && c.kind == ContactKind::Colliding) continue;
+      const Vec3 J = c.j * c.n + c.j_t;
+      ContactBody &A = held_[c.a], &B = held_[c.b];
+      A.v -= A.inv_mass * J;
+      A.omega -= A.I_inv_world * (c.p - A.x).cross(J);
+      B.v += B.inv_mass * J;
+      B.omega += B.I_inv_world * (c.p - B.x).cross(J);
+      level_points_.push_back(index);
+    }
+    if (level_points_.empty()) continue;
+    ++diagnostics_.levels;
+    if (resting_solver_) {
+      diagnostics_.iterations +=
+          resting_solver_->solve(held_, contacts_, level_points_, bodies_, states_, settings_.gravity, h);
+      continue;
+    }
+    level_contacts_.clear();
+    for (const int index : level_points_) level_contacts_.push_back(contacts_[index]);
+    diagnostics_.iterations += settings_.method == ResponseMethod::Simultaneous
+                                   ? solveSimultaneous(held_, level_contacts_, settings_)
+                                   : solveSequential(held_, level_contacts_, settings_);
+    for (std::size_t k = 0; k < level_points_.size(); ++k) contacts_[level_points_[k]] = level_contacts_[k];
+  }
+  // The held bodies' velocities never changed: every velocity is the propagated one
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    contact_bodies_[i].v = held_[i].v;
+    contact_bodies_[i].omega = held_[i].omega;
+  }
 }
 
 void World::solveRestingContacts(double h) {
