@@ -94,8 +94,9 @@ TEST_CASE("world api: a body at rest on the ground is resting, not colliding, at
 
 TEST_CASE("contact suite: scenes picked by name prefix, and a report refuses a missing engine", "[common]") {
   const auto all = contactSuite();
-  REQUIRE(all.size() == 13);
+  REQUIRE(all.size() == 20);
   CHECK(contactSuite({"stack", "dominoes"}).size() == 2);
+  CHECK(contactSuite({"fast sphere"}).size() == 3);
   CHECK(contactSuite({"flat drop"}).size() == 2);  // "slow flat drop" does not start with it
   CHECK(contactSuite({"no such scene"}).empty());
   CHECK_THROWS_WITH(contactSuiteReport({}, "heading", "/tmp/unused", std::cout), Contains("no engine"));

@@ -41,48 +41,52 @@ TEST_CASE("textbook scenes, resting contact: a 100:1 heavy box stays on a light 
   CHECK(checkScenes({"heavy on light", "overlap recovery", "dominoes"}) == 3);
 }
 
-TEST_CASE("textbook scenes, resting contact: a stack of 10 cubes stands and settles under 5 mm", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
-  // The stack is chaotic: a nanometre shift of the start, or the same sweeps summed in another
-  // order, moves its largest sway anywhere from 0.03 to 13 cm. So it runs 9 times (as it is, then
-  // shifted by up to 1 nm) and the median is checked, with every run still standing.
+TEST_CASE("textbook scenes, resting contact: a stack of 10 cubes stands still for 10 s", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
+  // Three runs: as it is, then every cube shifted by up to 1 nm (a swaying stack goes anywhere
+  // from there; one that stands goes nowhere in any of them)
   const std::vector<SpreadMeasure> spread = runSuiteSceneShaken("stack of 10 cubes", [](const Scene& scene) {
     return std::make_unique<WorldEngine>(
         World(scene, restingWorldSettings(), std::make_shared<LcpContactSolver>(RestingSettings{})));
-  });
+  }, 3);
   REQUIRE(spread.size() == 2);
   const SpreadMeasure& sunk = spread[0];
   const SpreadMeasure& sway = spread[1];
   CAPTURE(sunk.median.value, sunk.largest, sway.median.value, sway.largest);
-  // The suite's 5 mm on the median run (2.3 mm on the median of 2000 shifted runs, 6.9 mm at most)
-  CHECK(sunk.median.pass());
   // 1 cm in any run: the Baumgarte term leaves each of the 10 contacts up to its 1 mm slop deep
+  // (0.02 mm measured)
   CHECK(sunk.largest <= 10 * RestingSettings{}.slop);
-  // Half an edge on the median run: 100 PGS sweeps sway the stack 2.4 cm on the median of 2000
-  // shifted runs and beyond the suite's quarter edge in 1 run of 5, so that bar would fail by chance
-  CHECK(sway.median.value <= 0.1);
-  // Two and a half edges in any run (13 cm at most in 2000): a stack that topples moves by metres
-  CHECK(sway.largest <= 0.5);
+  CHECK(sunk.median.value >= 0.0);
+  // The suite's 1 mm in every run (0.01 um measured): with the World's shock propagation each
+  // level stands on the one below; without it, 100 PGS sweeps sway the top by 2 to 13 cm
+  CHECK(sway.largest <= sway.median.tolerance);
 }
 
-TEST_CASE("textbook scenes, resting contact: with converged PGS the stack of 10 stands still", "[lab06][pts=1][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
-  // The suite's bar is 'stands'; 'still' needs PGS converged: 300 sweeps sway the top by 0.9 cm
-  // on the median of 2000 shifted runs (100 sweeps: 2.4 cm); the exact solvers hold it to 1e-8 m,
-  // but Lemke cannot take every scene of the suite: the dominoes' degenerate corners end it on a ray.
+TEST_CASE("textbook scenes, resting contact: the stack of 10 stands still without shock propagation once PGS converges", "[lab06][pts=1][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
+  // The exact solvers hold the stack to 1e-8 m without help; PGS needs its sweeps: at 300 the
+  // top sways by 0.9 cm on the median of 2000 shifted runs, at 100 by 2.4 cm
   RestingSettings converged;
   converged.lcp.max_iterations = 300;
+  Settings unpropagated = restingWorldSettings();
+  unpropagated.shock_propagation = false;
   const std::vector<SpreadMeasure> spread = runSuiteSceneShaken("stack of 10 cubes", [&](const Scene& scene) {
-    return std::make_unique<WorldEngine>(
-        World(scene, restingWorldSettings(), std::make_shared<LcpContactSolver>(converged)));
-  });
+    return std::make_unique<WorldEngine>(World(scene, unpropagated, std::make_shared<LcpContactSolver>(converged)));
+  }, 3);
   REQUIRE(spread.size() == 2);
   const SpreadMeasure& sunk = spread[0];
   const SpreadMeasure& sway = spread[1];
   CAPTURE(sunk.median.value, sunk.largest, sway.median.value, sway.largest);
-  // 2 cm on the median run: a hundredth of the stack's height (600 shifted runs: 95 % under 1.8 cm)
-  CHECK(sway.median.value <= 0.02);
-  // 5 cm in any run (2.6 cm at most in 2000): still standing, a quarter of an edge
+  // 5 cm in any run: still standing, a quarter of an edge (a toppled stack moves by metres)
   CHECK(sway.largest <= 0.05);
   // 1 cm in any run: the Baumgarte term leaves each of the 10 contacts up to its 1 mm slop deep
   CHECK(sunk.largest <= 10 * RestingSettings{}.slop);
   CHECK(sunk.median.value >= 0.0);
+}
+
+TEST_CASE("textbook scenes, resting contact: 1000:1, a small cube on a large one and a wide plate on a small cube stay up; a 100 kg box stays on a 3-2-1 pyramid", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
+  // Without shock propagation the heavy cube sinks through (0.2 m) and the plate by 14 cm
+  CHECK(checkScenes({"cube on cube", "plate on cube", "heavy on pyramid"}) == 3);
+}
+
+TEST_CASE("textbook scenes, resting contact: 5 cm spheres at 10, 40 and 100 m/s never pass through a 20 cm box; cubes meeting face on part at e times the approach speed", "[lab06][pts=1][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
+  CHECK(checkScenes({"fast sphere", "face-on"}) == 4);
 }

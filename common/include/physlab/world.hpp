@@ -471,6 +471,7 @@ class World {
     double separation;    // n . (p_A - p_B) after the step's motion, before any correction [m]
     double target;        // the separation this step's correction reaches for [m]
     double inv_k;         // 1 / (n . K n), the push that opens the separation by 1 m [kg]
+    double pushed;        // the push so far, >= 0: a later sweep may take back what an earlier overdid
   };
   std::vector<CorrectionPoint> correction_;
   // Shock propagation: each body's level (0 fixed, -1 not carried by a fixed body), the contact

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <ostream>
 #include <sstream>
 
@@ -538,17 +539,21 @@ void World::propagateShock(double h) {
     }
     if (level_points_.empty()) continue;
     ++diagnostics_.levels;
-    if (resting_solver_) {
-      diagnostics_.iterations +=
-          resting_solver_->solve(held_, contacts_, level_points_, bodies_, states_, settings_.gravity, h);
-      continue;
-    }
+    // The solver works on copies: a held body does not feel what the level's solve changes, so
+    // its answer is no impulse the bodies exchanged, and the contacts keep the response's
+    // impulses (what warm starts the next step)
     level_contacts_.clear();
     for (const int index : level_points_) level_contacts_.push_back(contacts_[index]);
-    diagnostics_.iterations += settings_.method == ResponseMethod::Simultaneous
-                                   ? solveSimultaneous(held_, level_contacts_, settings_)
-                                   : solveSequential(held_, level_contacts_, settings_);
-    for (std::size_t k = 0; k < level_points_.size(); ++k) contacts_[level_points_[k]] = level_contacts_[k];
+    if (resting_solver_) {
+      level_points_.resize(level_contacts_.size());
+      std::iota(level_points_.begin(), level_points_.end(), 0);
+      diagnostics_.iterations +=
+          resting_solver_->solve(held_, level_contacts_, level_points_, bodies_, states_, settings_.gravity, h);
+    } else {
+      diagnostics_.iterations += settings_.method == ResponseMethod::Simultaneous
+                                     ? solveSimultaneous(held_, level_contacts_, settings_)
+                                     : solveSequential(held_, level_contacts_, settings_);
+    }
   }
   // The held bodies' velocities never changed: every velocity is the propagated one
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -689,6 +694,7 @@ void World::correctPositions(double h) {
     }
     if (k == 0.0) continue;
     point.inv_k = 1.0 / k;
+    point.pushed = 0.0;
     point.separation = -c.depth + h * c.n.dot(u);
     point.target = -slop - (1.0 - beta) * std::max(0.0, -point.separation - slop);
     if (point.separation < point.target) correction_.push_back(point);
@@ -702,12 +708,15 @@ void World::correctPositions(double h) {
   const std::size_t count = correction_.size();
   for (int sweep = 0; sweep < settings_.correction_sweeps; ++sweep) {
     for (std::size_t k = 0; k < count; ++k) {
-      const CorrectionPoint& point = correction_[sweep % 2 == 0 ? k : count - 1 - k];
+      CorrectionPoint& point = correction_[sweep % 2 == 0 ? k : count - 1 - k];
       const double separation =
           point.separation + point.n.dot(shift_[point.a] + turn_[point.a].cross(point.r_a) - shift_[point.b] -
                                          turn_[point.b].cross(point.r_b));
-      if (separation >= point.target) continue;
-      const double push = (point.target - separation) * point.inv_k;
+      // The total push stays >= 0 (never a pull); a point an earlier push overdid gives some back
+      const double total = std::max(0.0, point.pushed + (point.target - separation) * point.inv_k);
+      const double push = total - point.pushed;
+      point.pushed = total;
+      if (push == 0.0) continue;
       if (!bodies_[point.a].fixed) {
         shift_[point.a] += (push * contact_bodies_[point.a].inv_mass) * point.n;
         turn_[point.a] += push * point.turn_a;
