@@ -91,6 +91,7 @@
 #include "physlab/resting.hpp"
 #include "physlab/soft_step.hpp"
 
+#include "../support/goals.hpp"
 #ifdef PHYSLAB_HAVE_BULLET
 #include "../support/bullet_world.hpp"
 #endif
@@ -754,6 +755,14 @@ int main(int argc, char** argv) {
       splits.push_back(runs[kDense][s].steps > 0 ? splitResting(scene) : Split{});
     }
 
+    // Time over Bullet's for the same steps from the same start (Bullet's first k steps when the
+    // run stopped at k): the table's column and the goal's ratio. NAN without Bullet, or where
+    // Bullet stopped first.
+    const auto overBullet = [&](const Run& r, std::size_t s) -> double {
+      if (bullet_index < 0 || r.steps == 0) return NAN;
+      const Run& b = runs[static_cast<std::size_t>(bullet_index)][s];
+      return b.steps >= r.steps ? r.elapsed.back() / b.elapsed[static_cast<std::size_t>(r.steps - 1)] : NAN;
+    };
     Table table({"cubes", "engine", "steps run (of " + std::to_string(steps) + ")", "ms per step",
                  "time / Bullet's (same steps)", "largest drift [mm]", "drift at end [mm]", "contact points (last step)",
                  "windows", "outcome"});
@@ -766,12 +775,9 @@ int main(int argc, char** argv) {
           table.add({std::to_string(cubes), engines[e].name, "0", "-", "-", "-", "-", "-", "-", outcome(r, steps, reach)});
           continue;
         }
-        std::string ratio = "-";
-        if (bullet_index >= 0) {
-          const Run& b = runs[static_cast<std::size_t>(bullet_index)][s];
-          if (b.steps >= r.steps) ratio = fmt(r.elapsed.back() / b.elapsed[static_cast<std::size_t>(r.steps - 1)]);
-        }
-        table.add({std::to_string(cubes), engines[e].name, std::to_string(r.steps), fmt(1e3 * r.per_step()), ratio,
+        const double ratio = overBullet(r, s);
+        table.add({std::to_string(cubes), engines[e].name, std::to_string(r.steps), fmt(1e3 * r.per_step()),
+                   std::isnan(ratio) ? "-" : fmt(ratio),
                    fmt(1e3 * r.drift_max), fmt(1e3 * r.drift_end), std::to_string(r.contacts), std::to_string(r.windows),
                    outcome(r, steps, reach)});
       }
@@ -989,11 +995,14 @@ int main(int argc, char** argv) {
     for (const std::string& p : wp_paths) std::cout << "wrote " << p << "\n";
     for (const std::string& p : suite_paths) std::cout << "wrote " << p << "\n";
 
-    // The goals, from this run's figures
+    // The goals, from this run's figures. A quick run stops at a few cubes, short of the sizes the
+    // goals name: its figures say nothing of them.
+    const std::string full_run_only =
+        "measured by a full run only (a quick run stops at " + std::to_string(rows.back() * (rows.back() + 1) / 2) + " cubes)";
     std::vector<std::string> goals;
     {
       std::string ours;
-      bool met = !options.quick;
+      bool met = true;
       for (std::size_t m = 0; m < exact.size(); ++m) {
         for (std::size_t k = 0; k < exact[m].size(); ++k) {
           const ExactSolve& r = exact[m][k];
@@ -1011,25 +1020,48 @@ int main(int argc, char** argv) {
                   std::to_string(exact_rows[k] * (exact_rows[k] + 1) / 2) + " cubes " + what;
         }
       }
-      goals.push_back("goal: pivoting and Lemke solve the 55- and 210-cube pyramids' frictionless LCP: ours " + ours +
-                      ", target all four solved, " + (met ? "met" : "not met"));
+      goals.push_back(bench::goalLine("pivoting and Lemke solve the 55- and 210-cube pyramids' frictionless LCP", ours,
+                                      "all four solved", options.quick ? full_run_only : met ? "met" : "not met"));
     }
     {
+      // A share of Bullet's step in the same run rather than milliseconds, so that the goal means
+      // the same on any machine: our fastest engine that stands, against Bullet's 20 iterations
+      // on the same pyramid over the same steps (the table's "time / Bullet's")
+      constexpr double kShareOfBullet = 0.6;
       const std::size_t big = rows.size() - 1;
       const int cubes = rows[big] * (rows[big] + 1) / 2;
-      std::string ours;
-      double best = INFINITY;
+      std::size_t best = engines.size();
+      std::string tried;
       for (const std::size_t e : {std::size_t{0}, std::size_t{1}, kSoft}) {
         const Run& r = runs[e][big];
         const bool stands = r.steps == steps && r.finite && r.drift_max <= kStands;
-        if (stands) best = std::min(best, 1e3 * r.per_step());
-        ours += (ours.empty() ? "" : "; ") + engines[e].label + " at " + std::to_string(cubes) + " cubes " +
-                (r.steps > 0 ? fmt(1e3 * r.per_step()) + " ms per step, drift " + fmt(1e3 * r.drift_max) + " mm, " : "") +
-                outcome(r, steps, 2.0 * kPitch * rows[big]);
+        if (stands && (best == engines.size() || r.per_step() < runs[best][big].per_step())) best = e;
+        tried += (tried.empty() ? "" : "; ") + engines[e].label + " at " + std::to_string(cubes) + " cubes " +
+                 (r.steps > 0 ? fmt(1e3 * r.per_step()) + " ms per step, drift " + fmt(1e3 * r.drift_max) + " mm, " : "") +
+                 outcome(r, steps, 2.0 * kPitch * rows[big]);
       }
-      const bool met = cubes == 465 && best <= 4.0;
-      goals.push_back("goal: 465-cube pyramid stands (drift under 5 cm over 10 s) at no more than 4 ms per step: ours " + ours +
-                      ", target stands at <= 4 ms per step, " + (met ? "met" : "not met"));
+      std::string ours = "none stands (" + tried + ")";
+      double ratio = NAN;
+      if (best < engines.size()) {
+        const Run& r = runs[best][big];
+        ratio = overBullet(r, big);
+        ours = engines[best].label + " " + fmt(1e3 * r.per_step()) + " ms per step";
+        if (!std::isnan(ratio)) {
+          const Run& b = runs[static_cast<std::size_t>(bullet_index)][big];
+          ours += ", Bullet " + fmt(1e3 * b.per_step()) + " ms (ratio " + fmt(ratio) + ")";
+        } else if (bullet_index >= 0) {
+          ours += ", Bullet stopped after " + std::to_string(runs[static_cast<std::size_t>(bullet_index)][big].steps) +
+                  " steps";
+        }
+      }
+      const std::string verdict = options.quick      ? full_run_only
+                                  : bullet_index < 0 ? "not measured (Bullet not installed)"
+                                  : ratio <= kShareOfBullet ? "met"
+                                                            : "not met";
+      goals.push_back(bench::goalLine("465-cube pyramid stands (drift under 5 cm over 10 s) at no more than " +
+                                          fmt(kShareOfBullet) + " of Bullet's " + std::to_string(kIterations) +
+                                          "-iteration step time",
+                                      ours, "<= " + fmt(kShareOfBullet), verdict));
     }
     {
       std::ofstream out(path, std::ios::app);
