@@ -476,10 +476,10 @@ class World {
   std::vector<CorrectionPoint> correction_;
   // Shock propagation: each body's level (0 fixed, -1 not carried by a fixed body), the contact
   // graph (each body's neighbours from first_[i] to first_[i + 1]), the bodies and contacts by
-  // level (level L from by_level_[L] to by_level_[L + 1]), the bodies with the lower levels held
+  // level (the bodies in queue_, breadth-first; level L from *_level_start_[L] to [L + 1]), the bodies with the lower levels held
   // still, and one level's contacts as the solver takes them
   std::vector<int> level_, first_, neighbours_, queue_;
-  std::vector<int> bodies_by_level_, body_level_start_, contacts_by_level_, contact_level_start_;
+  std::vector<int> body_level_start_, contacts_by_level_, contact_level_start_;
   std::vector<ContactBody> held_;
   std::vector<Contact> level_contacts_;
   std::vector<int> level_points_;

@@ -488,10 +488,9 @@ void World::findLevels() {
       }
     }
   }
-  // The breadth-first order lists the bodies by level; a contact belongs to the higher of its
+  // The breadth-first order (queue_) lists the bodies by level; a contact belongs to the higher of its
   // bodies' levels (one of level 0 and one not carried: none)
   const int top = queue_.empty() ? 0 : level_[queue_.back()];
-  bodies_by_level_ = queue_;
   body_level_start_.assign(static_cast<std::size_t>(top) + 2, 0);
   for (const int i : queue_) ++body_level_start_[static_cast<std::size_t>(level_[i]) + 1];
   contact_level_start_.assign(static_cast<std::size_t>(top) + 2, 0);
@@ -517,7 +516,7 @@ void World::propagateShock(double h) {
   for (int level = 1; level <= top; ++level) {
     // The level below is held still from here on: no impulse changes its velocities
     for (int k = body_level_start_[level - 1]; k < body_level_start_[level]; ++k) {
-      ContactBody& held = held_[bodies_by_level_[k]];
+      ContactBody& held = held_[queue_[k]];
       held.inv_mass = 0.0;
       held.I_inv_world = Mat3::Zero();
     }
