@@ -71,7 +71,8 @@
 // verdict yet" when a budget stopped the run first with no cube beyond 5 cm. Each engine's
 // windows run back to back (not interleaved with the other engines': ours may take one window).
 // Writes <out>/lab06_bench.md and the chart <out>/lab06_bench; the suite <out>/lab06_bench_suite.md
-// and the chart <out>/lab06_bench_suite.
+// and the chart <out>/lab06_bench_suite; the suite's 10-cube stack in the same engines and the soft
+// step, its top's sideways drift against time, <out>/lab06_bench_stack_drift.
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
@@ -987,6 +988,19 @@ int main(int argc, char** argv) {
     const std::vector<std::string> suite_paths = contactSuiteReport(
         suite_engines, "Lab 6 benchmark: the contact suite (textbook scenes against physical truth), h = 1/60 s",
         options.out + "/lab06_bench_suite", std::cout).paths;
+
+    // The suite's 10-cube stack, the top's drift against time: the suite's engines as lines, and
+    // the soft step
+    std::vector<SuiteColumn> drift_engines = suite_engines;
+    drift_engines.insert(drift_engines.begin() + 2,
+                         {"", "PhysLab soft step (Lab 6)", "",
+                          [](const Scene& sc) { return std::make_unique<OurSimulation>(sc, softSettings()); }});
+    for (SuiteColumn& column : drift_engines) column.style = "lines lw 2";
+    const StackDrift drift = stackDriftChart(drift_engines, options.out + "/lab06_bench_stack_drift", std::cout);
+    std::cout << "\nLab 6 benchmark: the 10-cube stack over 10 s, the top's largest sideways drift\n";
+    for (std::size_t c = 0; c < drift_engines.size(); ++c) {
+      std::cout << "  " << drift_engines[c].label << ": " << fmt(1e3 * drift.largest[c], 3) << " mm\n";
+    }
 #ifdef PHYSLAB_HAVE_ODE
     dCloseODE();
 #endif
@@ -994,6 +1008,7 @@ int main(int argc, char** argv) {
     for (const std::string& p : chart_paths) std::cout << "wrote " << p << "\n";
     for (const std::string& p : wp_paths) std::cout << "wrote " << p << "\n";
     for (const std::string& p : suite_paths) std::cout << "wrote " << p << "\n";
+    for (const std::string& p : drift.paths) std::cout << "wrote " << p << "\n";
 
     // The goals, from this run's figures. A quick run stops at a few cubes, short of the sizes the
     // goals name: its figures say nothing of them.

@@ -92,7 +92,7 @@ TEST_CASE("world api: a body at rest on the ground is resting, not colliding, at
   }
 }
 
-TEST_CASE("contact suite: scenes picked by name prefix, and a report refuses a missing engine", "[common]") {
+TEST_CASE("contact suite: scenes picked by name prefix, and a report or a drift chart refuses a missing engine", "[common]") {
   const auto all = contactSuite();
   REQUIRE(all.size() == 20);
   CHECK(contactSuite({"stack", "dominoes"}).size() == 2);
@@ -101,6 +101,9 @@ TEST_CASE("contact suite: scenes picked by name prefix, and a report refuses a m
   CHECK(contactSuite({"no such scene"}).empty());
   CHECK_THROWS_WITH(contactSuiteReport({}, "heading", "/tmp/unused", std::cout), Contains("no engine"));
   CHECK_THROWS_WITH(contactSuiteReport({SuiteColumn{"name", "label", "points", nullptr}}, "heading", "/tmp/unused", std::cout),
+                    Contains("'label' has no make function"));
+  CHECK_THROWS_WITH(stackDriftChart({}, "/tmp/unused", std::cout), Contains("stack drift chart: no engine"));
+  CHECK_THROWS_WITH(stackDriftChart({SuiteColumn{"name", "label", "lines", nullptr}}, "/tmp/unused", std::cout),
                     Contains("'label' has no make function"));
 }
 

@@ -36,4 +36,18 @@ struct SuiteReport {
 SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const std::string& heading,
                                const std::string& stem, std::ostream& out);
 
+/// What stackDriftChart() drew.
+struct StackDrift {
+  std::vector<std::string> paths;  ///< the chart (.png, .svg); none when no engine ran
+  std::vector<double> largest;     ///< per column, the top cube's largest sideways distance from its start [m] (NaN: the engine threw)
+};
+
+/// The suite's 10-cube stack ("stack of 10 cubes", 10 s) in every column's engine, once, as it is:
+/// the top cube's sideways distance from where it started against time, on a log axis (a
+/// distance under 1e-10 m is drawn at 1e-10 m), beside the suite's 1 mm bar. Each column's
+/// `style` is a line style ("lines lw 2", "lines dt 2 lw 2"). An engine that throws draws no line
+/// and `out` says why. Writes `stem`.png and `stem`.svg. InvalidInput when there is no column or
+/// a column has no make function.
+StackDrift stackDriftChart(const std::vector<SuiteColumn>& columns, const std::string& stem, std::ostream& out);
+
 }  // namespace physlab

@@ -42,14 +42,19 @@ double drawnScore(const Measure& m) {
   return std::isfinite(score) ? std::clamp(score, kScoreFloor, kScoreCeiling) : kScoreCeiling;
 }
 
+// InvalidInput, naming `what`, when there is no column or a column has no make function.
+void requireColumns(const std::vector<SuiteColumn>& columns, const std::string& what) {
+  if (columns.empty()) throw InvalidInput(what + ": no engine to run");
+  for (const SuiteColumn& column : columns) {
+    if (!column.make) throw InvalidInput(what + ": engine '" + column.label + "' has no make function");
+  }
+}
+
 }  // namespace
 
 SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const std::string& heading,
                                const std::string& stem, std::ostream& out) {
-  if (columns.empty()) throw InvalidInput("contact suite report: no engine to run");
-  for (const SuiteColumn& column : columns) {
-    if (!column.make) throw InvalidInput("contact suite report: engine '" + column.label + "' has no make function");
-  }
+  requireColumns(columns, "contact suite report");
   // results[c][s]: column c's measures of scene s, each column on a fresh suite
   std::vector<std::vector<std::vector<Measure>>> results(columns.size());
   std::vector<std::string> notes;
@@ -113,6 +118,45 @@ SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const st
   }
   for (const std::string& p : chart.save(stem)) report.paths.push_back(p);
   return report;
+}
+
+StackDrift stackDriftChart(const std::vector<SuiteColumn>& columns, const std::string& stem, std::ostream& out) {
+  requireColumns(columns, "stack drift chart");
+  constexpr double kFloor = 1e-10;  // [m]: below a tenth of a nanometre a stack stands exactly
+  const Scene start = contactSuite({"stack of 10"}).front()->scene();
+  const double duration = contactSuite({"stack of 10"}).front()->duration();
+  const std::size_t top = start.states.size() - 1;  // the stack's cubes rise in the Scene's order
+  const int steps = static_cast<int>(std::lround(duration / kSuiteStep));
+  Chart chart("A stack of 10 cubes, h = 1/60 s: how far its top moves sideways", "time [s]",
+              "top's sideways distance from its start [m] (10^{-10}: at most that)");
+  chart.logY().yRange(0.5 * kFloor, 10.0).xRange(0.0, duration);
+  StackDrift drift;
+  for (const SuiteColumn& column : columns) {
+    Series series{column.label, {}, {}, column.style};
+    double largest = 0.0;
+    try {
+      const std::unique_ptr<SuiteEngine> engine = column.make(start);
+      for (int k = 1; k <= steps; ++k) {
+        engine->step(kSuiteStep);
+        const double d = (engine->states()[top].x - start.states[top].x).head<2>().norm();
+        largest = std::isfinite(d) ? std::max(largest, d) : std::numeric_limits<double>::quiet_NaN();
+        series.x.push_back(k * kSuiteStep);
+        series.y.push_back(std::isfinite(d) ? std::max(d, kFloor) : std::numeric_limits<double>::quiet_NaN());
+      }
+    } catch (const std::exception& e) {
+      out << "  stack drift chart: " << column.label << " failed: " << e.what() << "\n";
+      series.x.clear();
+      series.y.clear();
+      largest = std::numeric_limits<double>::quiet_NaN();
+    }
+    drift.largest.push_back(largest);
+    if (!series.x.empty()) chart.add(std::move(series));
+  }
+  chart.add({"the suite's bar: 1 mm", {0.0, duration}, {1e-3, 1e-3}, "lines dt 3 lc rgb '#000000'"});
+  if (std::any_of(drift.largest.begin(), drift.largest.end(), [](double d) { return !std::isnan(d); })) {
+    drift.paths = chart.save(stem);
+  }
+  return drift;
 }
 
 }  // namespace physlab
