@@ -38,6 +38,7 @@
 /// | \f$m_{eff}\f$ | `effective_mass` | \f$1/K\f$ along the normal [kg] |
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -112,8 +113,9 @@ struct SoftStepSettings {
   int relax_iterations = 1;     ///< rigid sweeps after each substep's position update, >= 0
   double max_push = 3.0;        ///< fastest push apart of overlap [m/s], > 0 (infinity: none)
   int solve_iterations = 1;     ///< soft sweeps per substep, >= 1
-  /// Sweep the points from the highest to the lowest along gravity: one sweep then carries the
-  /// weight of a stack down to the ground (else the points go in the World's order)
+  /// Sweep the contact pairs from the highest to the lowest along gravity (a pair at its highest
+  /// point, its points together): one sweep then carries the weight of a stack down to the
+  /// ground (else the pairs go in the World's order)
   bool top_down = true;
   /// One line naming every setting.
   std::string toString() const;
@@ -129,7 +131,8 @@ struct SoftStepSettings {
 /// the step's start (no new collision detection inside the step). A substep: warm start (the last
 /// substep's impulses again), soft sweeps (softNormalImpulse(), then friction, rigid, clamped to
 /// the disc \f$|\lambda_t| \le \mu\lambda_n\f$), positions, relax sweeps; the sweeps visit the
-/// points from the top down (SoftStepSettings::top_down). After the substeps, a colliding
+/// contact pairs from the top down (SoftStepSettings::top_down), each pair's points together, its
+/// two bodies' velocities held in local copies meanwhile (as Box2D solves a manifold). After the substeps, a colliding
 /// point (Contact::kind) with \f$\epsilon > 0\f$ that was pushed gets one restitution update towards
 /// \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$. Reuses its buffers: no allocation once they have grown.
 class SoftStepSolver : public RestingContactSolver {
@@ -158,7 +161,6 @@ class SoftStepSolver : public RestingContactSolver {
   // One contact point: anchors, Jacobian parts along n, t, o and the accumulated impulses
   struct Point {
     std::size_t a = 0, b = 0;
-    Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();  // anchors from the centres at the step's start
     Vec3 d[3];                                    // n, t, o
     Vec3 ang_a[3], ang_b[3];                      // r x d
     Vec3 turn_a[3], turn_b[3];                    // I^-1 (r x d)
@@ -171,6 +173,11 @@ class SoftStepSolver : public RestingContactSolver {
     double pushed = 0.0;                          // largest normal impulse of the step [N s]
     Vec3 lambda = Vec3::Zero();                   // accumulated impulses of the substep (n, t, o) [N s]
     Vec3 total = Vec3::Zero();                    // their sum over the step [N s]
+    /// Adds the substep's impulses to the step's.
+    void addToStep() {
+      total += lambda;
+      pushed = std::max(pushed, lambda(0));
+    }
     /// The relative velocity of the touching points along row i (0: n, 1: t, 2: o) [m/s].
     double velocity(const Motion& A, const Motion& B, int i) const {
       return d[i].dot(A.v - B.v) + ang_a[i].dot(A.omega) - ang_b[i].dot(B.omega);
@@ -203,7 +210,14 @@ class SoftStepSolver : public RestingContactSolver {
   SoftStepSettings settings_;
   SoftCoefficients soft_, soft_fixed_;
   std::vector<Point> points_;
-  std::vector<std::pair<double, int>> order_;  // (height against gravity, index into contacts) in sweep order
+  // A contact pair's points, consecutive in `resting`: from `first`, `count` of them, and the
+  // height against gravity of its highest point
+  struct Run {
+    double height = 0.0;
+    int first = 0, count = 0;
+  };
+  std::vector<Run> order_;            // the pairs in sweep order
+  std::vector<int> sweep_contacts_;   // index into contacts of each point, in sweep order
   std::vector<Motion> motion_;  // each body's velocities and motion
   std::vector<Quat> dq_;        // each body's rotation since the step's start
   bool moved_ = false;

@@ -34,35 +34,50 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
                   Vec3::Zero()};
   }
 
-  // The sweep order: highest point first (along -gravity), or the World's
-  order_.resize(resting.size());
+  // The sweep order: a pair's points together (the sweeps keep its two bodies in registers while
+  // they visit them, as Box2D solves a manifold), the pairs from the highest point down along
+  // -gravity (or in the World's order)
+  order_.clear();
   for (std::size_t k = 0; k < resting.size(); ++k) {
-    const double height = settings_.top_down ? contacts[static_cast<std::size_t>(resting[k])].p.dot(gravity) : 0.0;
-    order_[k] = {height, resting[k]};
+    const Contact& c = contacts[static_cast<std::size_t>(resting[k])];
+    const double height = settings_.top_down ? c.p.dot(gravity) : 0.0;
+    const bool same_pair = k > 0 && contacts[static_cast<std::size_t>(resting[k - 1])].a == c.a &&
+                           contacts[static_cast<std::size_t>(resting[k - 1])].b == c.b;
+    if (same_pair) {
+      order_.back().height = std::min(order_.back().height, height);
+      ++order_.back().count;
+    } else {
+      order_.push_back({height, static_cast<int>(k), 1});
+    }
   }
-  if (settings_.top_down) std::stable_sort(order_.begin(), order_.end());
+  if (settings_.top_down) {
+    std::stable_sort(order_.begin(), order_.end(), [](const Run& x, const Run& y) { return x.height < y.height; });
+  }
+  sweep_contacts_.clear();
+  for (const Run& run : order_) {
+    for (int k = run.first; k < run.first + run.count; ++k) sweep_contacts_.push_back(resting[static_cast<std::size_t>(k)]);
+  }
 
   // Points: anchors, Jacobian parts, effective masses; the warm start is last step's impulse per substep
   points_.resize(resting.size());
   for (std::size_t k = 0; k < resting.size(); ++k) {
-    const Contact& c = contacts[static_cast<std::size_t>(order_[k].second)];
+    const Contact& c = contacts[static_cast<std::size_t>(sweep_contacts_[k])];
     Point& pt = points_[k];
     const ContactBody& A = bodies[static_cast<std::size_t>(c.a)];
     const ContactBody& B = bodies[static_cast<std::size_t>(c.b)];
     pt.a = static_cast<std::size_t>(c.a);
     pt.b = static_cast<std::size_t>(c.b);
-    pt.r_a = c.p - A.x;
-    pt.r_b = c.p - B.x;
+    const Vec3 r_a = c.p - A.x, r_b = c.p - B.x;  // the anchors, from the centres at the step's start
     pt.d[0] = c.n;
     std::tie(pt.d[1], pt.d[2]) = tangentPair(c.n);
     for (int i = 0; i < 3; ++i) {
-      pt.ang_a[i] = pt.r_a.cross(pt.d[i]);
-      pt.ang_b[i] = pt.r_b.cross(pt.d[i]);
+      pt.ang_a[i] = r_a.cross(pt.d[i]);
+      pt.ang_b[i] = r_b.cross(pt.d[i]);
       pt.turn_a[i] = A.I_inv_world * pt.ang_a[i];
       pt.turn_b[i] = B.I_inv_world * pt.ang_b[i];
       const double K = A.inv_mass + B.inv_mass + pt.ang_a[i].dot(pt.turn_a[i]) + pt.ang_b[i].dot(pt.turn_b[i]);
       if (!(K > 0.0)) {
-        throw InvalidInput("soft step: contact " + std::to_string(order_[k].second) + " has no moving body along row " +
+        throw InvalidInput("soft step: contact " + std::to_string(sweep_contacts_[k]) + " has no moving body along row " +
                            std::to_string(i));
       }
       pt.mass[i] = 1.0 / K;
@@ -79,13 +94,17 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     if (length > radius) pt.lambda.tail<2>() *= length > 0.0 ? radius / length : 0.0;
   }
 
-  // The substeps: gravity, warm start, soft sweeps, positions, relax sweeps
+  // The substeps: gravity, warm start (adding the last substep's impulses to the step's), soft
+  // sweeps, positions, relax sweeps
   const Vec3 dv = h_s * gravity;
   for (int step = 0; step < n; ++step) {
     for (Motion& body : motion_) {
       if (body.inv_mass > 0.0) body.v += dv;
     }
-    for (const Point& pt : points_) pt.apply(motion_[pt.a], motion_[pt.b], pt.lambda, 0);
+    for (Point& pt : points_) {
+      if (step > 0) pt.addToStep();
+      pt.apply(motion_[pt.a], motion_[pt.b], pt.lambda, 0);
+    }
     for (int i = 0; i < settings_.solve_iterations; ++i) sweep(h_s, false);
     for (std::size_t i = 0; i < motion_.size(); ++i) {
       Motion& body = motion_[i];
@@ -96,11 +115,8 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
       dq_[i] = exponentialUpdate(dq_[i], body.omega, h_s);
     }
     for (int r = 0; r < settings_.relax_iterations; ++r) sweep(h_s, true);
-    for (Point& pt : points_) {
-      pt.total += pt.lambda;
-      pt.pushed = std::max(pt.pushed, pt.lambda(0));
-    }
   }
+  for (Point& pt : points_) pt.addToStep();
 
   // Restitution: a colliding point that was pushed aims at its bounce, once
   for (Point& pt : points_) {
@@ -114,7 +130,7 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   }
 
   for (std::size_t k = 0; k < resting.size(); ++k) {
-    Contact& c = contacts[static_cast<std::size_t>(order_[k].second)];
+    Contact& c = contacts[static_cast<std::size_t>(sweep_contacts_[k])];
     const Point& pt = points_[k];
     c.j = pt.total(0);
     c.j_t = pt.total(1) * pt.d[1] + pt.total(2) * pt.d[2];
@@ -128,25 +144,32 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 }
 
 // One Gauss-Seidel sweep over the points: the normal row by softNormalImpulse() at the separation
-// now, then friction on the disc of radius mu lambda_n
+// now, then friction on the disc of radius mu lambda_n. A pair's points come together: its two
+// bodies' motion is read once, updated in local copies and written back once
 void SoftStepSolver::sweep(double h_s, bool relax) {
-  for (Point& pt : points_) {
-    Motion &A = motion_[pt.a], &B = motion_[pt.b];
-    const double v_n = pt.velocity(A, B, 0);
-    // The anchors moved with their bodies: the gap now, to first order in the rotation
-    const double s = -pt.depth + pt.d[0].dot(A.dx - B.dx) + pt.ang_a[0].dot(A.dtheta) - pt.ang_b[0].dot(B.dtheta);
-    const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, s, pt.mass[0], pt.soft_fixed ? soft_fixed_ : soft_,
-                                              h_s, settings_.max_push, relax);
-    pt.apply(A, B, 0, lambda_n - pt.lambda(0));
-    pt.lambda(0) = lambda_n;
-    // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc
-    Eigen::Vector2d lambda_T(pt.lambda(1) - pt.mass[1] * pt.velocity(A, B, 1),
-                             pt.lambda(2) - pt.mass[2] * pt.velocity(A, B, 2));
-    const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
-    if (length2 > radius * radius) lambda_T *= radius > 0.0 ? radius / std::sqrt(length2) : 0.0;
-    pt.apply(A, B, Vec3(0.0, lambda_T(0) - pt.lambda(1), lambda_T(1) - pt.lambda(2)), 1);
-    pt.lambda(1) = lambda_T(0);
-    pt.lambda(2) = lambda_T(1);
+  for (std::size_t k = 0; k < points_.size();) {
+    const std::size_t a = points_[k].a, b = points_[k].b;
+    Motion A = motion_[a], B = motion_[b];
+    for (; k < points_.size() && points_[k].a == a && points_[k].b == b; ++k) {
+      Point& pt = points_[k];
+      const double v_n = pt.velocity(A, B, 0);
+      // The anchors moved with their bodies: the gap now, to first order in the rotation
+      const double s = -pt.depth + pt.d[0].dot(A.dx - B.dx) + pt.ang_a[0].dot(A.dtheta) - pt.ang_b[0].dot(B.dtheta);
+      const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, s, pt.mass[0], pt.soft_fixed ? soft_fixed_ : soft_,
+                                                h_s, settings_.max_push, relax);
+      pt.apply(A, B, 0, lambda_n - pt.lambda(0));
+      pt.lambda(0) = lambda_n;
+      // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc
+      Eigen::Vector2d lambda_T(pt.lambda(1) - pt.mass[1] * pt.velocity(A, B, 1),
+                               pt.lambda(2) - pt.mass[2] * pt.velocity(A, B, 2));
+      const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
+      if (length2 > radius * radius) lambda_T *= radius > 0.0 ? radius / std::sqrt(length2) : 0.0;
+      pt.apply(A, B, Vec3(0.0, lambda_T(0) - pt.lambda(1), lambda_T(1) - pt.lambda(2)), 1);
+      pt.lambda(1) = lambda_T(0);
+      pt.lambda(2) = lambda_T(1);
+    }
+    motion_[a] = A;
+    motion_[b] = B;
   }
 }
 
