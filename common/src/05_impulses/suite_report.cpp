@@ -123,8 +123,9 @@ SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const st
 StackDrift stackDriftChart(const std::vector<SuiteColumn>& columns, const std::string& stem, std::ostream& out) {
   requireColumns(columns, "stack drift chart");
   constexpr double kFloor = 1e-10;  // [m]: below a tenth of a nanometre a stack stands exactly
-  const Scene start = contactSuite({"stack of 10"}).front()->scene();
-  const double duration = contactSuite({"stack of 10"}).front()->duration();
+  const std::unique_ptr<SuiteScene> stack = std::move(contactSuite({"stack of 10"}).front());
+  const Scene start = stack->scene();
+  const double duration = stack->duration();
   const std::size_t top = start.states.size() - 1;  // the stack's cubes rise in the Scene's order
   const int steps = static_cast<int>(std::lround(duration / kSuiteStep));
   Chart chart("A stack of 10 cubes, h = 1/60 s: how far its top moves sideways", "time [s]",
