@@ -130,9 +130,13 @@ struct SoftStepSettings {
 /// (\Delta x_b + \Delta\theta_b \times r_b))\f$ from the bodies' motion \f$\Delta x, \Delta\theta\f$ since
 /// the step's start (no new collision detection inside the step). A substep: warm start (the last
 /// substep's impulses again), soft sweeps (softNormalImpulse(), then friction, rigid, clamped to
-/// the disc \f$|\lambda_t| \le \mu\lambda_n\f$), positions, relax sweeps; the sweeps visit the
-/// contact pairs from the top down (SoftStepSettings::top_down), each pair's points together, its
-/// two bodies' velocities held in local copies meanwhile (as Box2D solves a manifold). After the substeps, a colliding
+/// the disc \f$|\lambda_t| \le \mu\lambda_n\f$), positions, relax sweeps (the normal row only,
+/// the friction impulse then shrunk onto the new disc: relaxing takes back the spring's push, and
+/// friction was solved by the soft sweep); the sweeps visit the contact pairs from the top down
+/// (SoftStepSettings::top_down), each pair's points together, its two bodies' velocities held in
+/// local copies meanwhile (as Box2D solves a manifold). The substep's last sweep gathers the next
+/// warm start per body as it leaves each point, so that no pass of its own reads the points again.
+/// After the substeps, a colliding
 /// point (Contact::kind) with \f$\epsilon > 0\f$ that was pushed gets one restitution update towards
 /// \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$. Reuses its buffers: no allocation once they have grown.
 class SoftStepSolver : public RestingContactSolver {
@@ -149,6 +153,11 @@ class SoftStepSolver : public RestingContactSolver {
   const SoftStepSettings& settings() const { return settings_; }  ///< the settings
 
  private:
+  // A body's velocities, or a change of them
+  struct Velocity {
+    Vec3 v = Vec3::Zero();
+    Vec3 omega = Vec3::Zero();
+  };
   // What the sweeps read and write of a body, packed (the sweeps' working set stays in cache):
   // its velocities during the substeps and its motion since the step's start
   struct Motion {
@@ -189,21 +198,30 @@ class SoftStepSolver : public RestingContactSolver {
       B.v -= (B.inv_mass * change) * d[i];
       B.omega -= change * turn_b[i];
     }
-    /// Applies the impulses `change` [N s] along the rows from `first` to 2 at once.
-    void apply(Motion& A, Motion& B, const Vec3& change, int first) const {
+    /// Applies the impulses `change` [N s] along the rows from `first` to 2 at once to the
+    /// velocities of A and B (a Motion, or a Velocity change), of inverse masses inv_a and inv_b.
+    template <class Body>
+    void apply(Body& A, Body& B, double inv_a, double inv_b, const Vec3& change, int first = 0) const {
       Vec3 J = Vec3::Zero(), turn_A = Vec3::Zero(), turn_B = Vec3::Zero();
       for (int i = first; i < 3; ++i) {
         J += change(i) * d[i];
         turn_A += change(i) * turn_a[i];
         turn_B += change(i) * turn_b[i];
       }
-      A.v += A.inv_mass * J;
+      A.v += inv_a * J;
       A.omega += turn_A;
-      B.v -= B.inv_mass * J;
+      B.v -= inv_b * J;
       B.omega -= turn_B;
     }
+    void apply(Motion& A, Motion& B, const Vec3& change, int first) const {
+      apply(A, B, A.inv_mass, B.inv_mass, change, first);
+    }
   };
-  void sweep(double h_s, bool relax);
+  // What a sweep does at its end with a point's impulses: nothing, or, in the substep's closing
+  // sweep, add them to the step's totals and (but after the last substep) gather them into
+  // the next substep's warm start
+  enum class Closing { None, Totals, TotalsAndWarmStart };
+  void sweep(double h_s, bool relax, Closing closing);
   template <int>
   friend struct remote::Access;  // in a grade, solve() runs in the worker: the state crosses with it
 
@@ -219,6 +237,7 @@ class SoftStepSolver : public RestingContactSolver {
   std::vector<Run> order_;            // the pairs in sweep order
   std::vector<int> sweep_contacts_;   // index into contacts of each point, in sweep order
   std::vector<Motion> motion_;  // each body's velocities and motion
+  std::vector<Velocity> warm_;  // each body's warm start for the next substep
   std::vector<Quat> dq_;        // each body's rotation since the step's start
   bool moved_ = false;
 };

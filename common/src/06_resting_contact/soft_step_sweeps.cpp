@@ -94,29 +94,36 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     if (length > radius) pt.lambda.tail<2>() *= length > 0.0 ? radius / length : 0.0;
   }
 
-  // The substeps: gravity, warm start (adding the last substep's impulses to the step's), soft
-  // sweeps, positions, relax sweeps
+  // The substeps: gravity and the warm start (the last substep's impulses again), soft sweeps,
+  // positions, relax sweeps. The first warm start is last step's impulses; the later ones are
+  // gathered per body by the substep's closing sweep, while it has each point at hand
   const Vec3 dv = h_s * gravity;
+  warm_.assign(bodies.size(), Velocity{});
+  for (Point& pt : points_) pt.apply(motion_[pt.a], motion_[pt.b], pt.lambda, 0);
+  const int sweeps = settings_.solve_iterations + settings_.relax_iterations;
   for (int step = 0; step < n; ++step) {
-    for (Motion& body : motion_) {
-      if (body.inv_mass > 0.0) body.v += dv;
-    }
-    for (Point& pt : points_) {
-      if (step > 0) pt.addToStep();
-      pt.apply(motion_[pt.a], motion_[pt.b], pt.lambda, 0);
-    }
-    for (int i = 0; i < settings_.solve_iterations; ++i) sweep(h_s, false);
     for (std::size_t i = 0; i < motion_.size(); ++i) {
       Motion& body = motion_[i];
-      if (!(body.inv_mass > 0.0)) continue;
-      body.dx += h_s * body.v;
-      if (body.omega.isZero()) continue;
-      body.dtheta += h_s * body.omega;
-      dq_[i] = exponentialUpdate(dq_[i], body.omega, h_s);
+      if (body.inv_mass > 0.0) body.v += dv;
+      body.v += warm_[i].v;
+      body.omega += warm_[i].omega;
+      warm_[i] = Velocity{};
     }
-    for (int r = 0; r < settings_.relax_iterations; ++r) sweep(h_s, true);
+    const Closing closing = step + 1 < n ? Closing::TotalsAndWarmStart : Closing::Totals;
+    for (int i = 0; i < sweeps; ++i) {
+      const bool relax = i >= settings_.solve_iterations;
+      sweep(h_s, relax, i + 1 == sweeps ? closing : Closing::None);
+      if (i + 1 != settings_.solve_iterations) continue;
+      for (std::size_t j = 0; j < motion_.size(); ++j) {
+        Motion& body = motion_[j];
+        if (!(body.inv_mass > 0.0)) continue;
+        body.dx += h_s * body.v;
+        if (body.omega.isZero()) continue;
+        body.dtheta += h_s * body.omega;
+        dq_[j] = exponentialUpdate(dq_[j], body.omega, h_s);
+      }
+    }
   }
-  for (Point& pt : points_) pt.addToStep();
 
   // Restitution: a colliding point that was pushed aims at its bounce, once
   for (Point& pt : points_) {
@@ -144,9 +151,12 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 }
 
 // One Gauss-Seidel sweep over the points: the normal row by softNormalImpulse() at the separation
-// now, then friction on the disc of radius mu lambda_n. A pair's points come together: its two
-// bodies' motion is read once, updated in local copies and written back once
-void SoftStepSolver::sweep(double h_s, bool relax) {
+// now, then friction on the disc of radius mu lambda_n (a relax sweep only shrinks the friction
+// impulse onto the new disc: it takes back the normal push, friction was solved by the soft
+// sweep). A pair's points come together: its two bodies' motion is read once, updated in local
+// copies and written back once. The substep's closing sweep adds each point's final impulses to
+// the step's and, but for the last substep, to its bodies' next warm start
+void SoftStepSolver::sweep(double h_s, bool relax, SoftStepSolver::Closing closing) {
   for (std::size_t k = 0; k < points_.size();) {
     const std::size_t a = points_[k].a, b = points_[k].b;
     Motion A = motion_[a], B = motion_[b];
@@ -160,13 +170,21 @@ void SoftStepSolver::sweep(double h_s, bool relax) {
       pt.apply(A, B, 0, lambda_n - pt.lambda(0));
       pt.lambda(0) = lambda_n;
       // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc
-      Eigen::Vector2d lambda_T(pt.lambda(1) - pt.mass[1] * pt.velocity(A, B, 1),
-                               pt.lambda(2) - pt.mass[2] * pt.velocity(A, B, 2));
+      Eigen::Vector2d lambda_T = pt.lambda.tail<2>();
+      if (!relax) {
+        lambda_T -= Eigen::Vector2d(pt.mass[1] * pt.velocity(A, B, 1), pt.mass[2] * pt.velocity(A, B, 2));
+      }
       const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
       if (length2 > radius * radius) lambda_T *= radius > 0.0 ? radius / std::sqrt(length2) : 0.0;
-      pt.apply(A, B, Vec3(0.0, lambda_T(0) - pt.lambda(1), lambda_T(1) - pt.lambda(2)), 1);
-      pt.lambda(1) = lambda_T(0);
-      pt.lambda(2) = lambda_T(1);
+      if (lambda_T != pt.lambda.tail<2>()) {
+        pt.apply(A, B, Vec3(0.0, lambda_T(0) - pt.lambda(1), lambda_T(1) - pt.lambda(2)), 1);
+        pt.lambda.tail<2>() = lambda_T;
+      }
+      if (closing == Closing::None) continue;
+      pt.addToStep();
+      if (closing == Closing::TotalsAndWarmStart) {
+        pt.apply(warm_[a], warm_[b], A.inv_mass, B.inv_mass, pt.lambda);
+      }
     }
     motion_[a] = A;
     motion_[b] = B;
