@@ -100,8 +100,16 @@ def digests(build: Path) -> dict:
 
 
 def tracked_state() -> str:
-    return subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=ROOT,
-                          capture_output=True, text=True).stdout
+    """git's list of changed tracked files; stops the run where git cannot read the tree (an
+    empty list before and after would pass the check while checking nothing)."""
+    status = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=ROOT,
+                            capture_output=True, text=True)
+    if status.returncode != 0:
+        why = (status.stderr.strip().splitlines() or [f"status {status.returncode}"])[0]
+        hint = (f"; if you trust this folder: git config --global --add safe.directory {ROOT}"
+                if "dubious ownership" in status.stderr else "")
+        sys.exit(f"adversarial: git cannot read {ROOT} ({why}){hint}")
+    return status.stdout
 
 
 def run_case(path: Path, build: Path, solution_lines: set, hidden_lines: set) -> list:

@@ -171,11 +171,13 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
   // about a fifth of the width from the plot
   std::size_t longest = 0;
   for (const Series& s : series_) longest = std::max(longest, s.title.size());
-  const char* key = longest > 28 ? "set key below\n" : "set key outside right\n";
+  const char* key = longest > 20 ? "set key below\n" : "set key outside right\n";
   std::vector<std::string> paths;
+  // Fonts sized for the chart shown at half its width: a student copy's handouts show the
+  // reference's chart and the student's side by side (docs/physlab.css), 420 pixels or more each
   const std::vector<std::pair<std::string, std::string>> terminals = {
-      {".png", "pngcairo size 960,600 enhanced font 'Sans,11'"},
-      {".svg", "svg size 960,600 enhanced font 'Sans,11' background '#ffffff'"}};
+      {".png", "pngcairo size 960,600 enhanced font 'Sans,16'"},
+      {".svg", "svg size 960,600 enhanced font 'Sans,16' background '#ffffff'"}};
   for (const auto& [extension, terminal] : terminals) {
     const std::string path = stem + extension;
     Gnuplot gp("gnuplot");
@@ -190,11 +192,11 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
     if (fixed_x_) gp << "set xrange [" << x_lo_ << ":" << x_hi_ << "]\n";
     if (fixed_y_) gp << "set yrange [" << y_lo_ << ":" << y_hi_ << "]\n";
     for (const Label& l : labels_) {
-      gp << "set label " << quoted(l.text) << " at " << l.x << ", " << l.y << " left offset 1,0 font ',10' front\n";
+      gp << "set label " << quoted(l.text) << " at " << l.x << ", " << l.y << " left offset 1,0 font ',15' front\n";
     }
     if (!x_tics_.empty()) {
       // Slanted names need room below the axis: a fixed bottom margin, in character heights
-      gp << "set bmargin 16\nset xtics rotate by -45 left font ',9' (";
+      gp << "set bmargin 16\nset xtics rotate by -45 left font ',13' (";
       for (std::size_t i = 0; i < x_tics_.size(); ++i) {
         gp << (i > 0 ? ", " : "") << quoted(x_tics_[i].second) << " " << x_tics_[i].first;
       }
@@ -210,7 +212,7 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
       gp << "set arrow from " << m.x << ", graph 0 to " << m.x
          << ", graph 1 nohead dashtype 2 lw 1.5 lc rgb '#555555'\n"
          << "set label " << quoted(m.label) << " at " << m.x << ", graph " << 0.96 - 0.05 * i
-         << (leftwards ? " right offset -0.5,0" : " left offset 0.5,0") << " font ',9' front\n";
+         << (leftwards ? " right offset -0.5,0" : " left offset 0.5,0") << " font ',13' front\n";
     }
     std::ostringstream plot;
     plot << "plot ";
@@ -271,7 +273,7 @@ std::string Animation::save(const std::string& path, int delay_cs) const {
   Gnuplot gp("gnuplot");
   // The title and the caption on lines of their own, in a top margin kept for them: one line
   // with both ran past the 640-pixel frame
-  gp << "set terminal gif animate delay " << delay_cs << " size 640,640 font 'Sans,10' optimize\n"
+  gp << "set terminal gif animate delay " << delay_cs << " size 640,640 font 'Sans,12' optimize\n"
      << "set output " << quoted(path) << "\n"
      << "set tmargin 4\n"
      << "set xrange [" << lo_.x() << ":" << hi_.x() << "]\n"
