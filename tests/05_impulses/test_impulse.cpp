@@ -16,6 +16,10 @@ TEST_CASE("particle-plane: the normal velocity reverses and shrinks by epsilon, 
   Vec3 v = randomVec3(5.0);
   if (v.dot(n) > 0) v = -v;
   const Vec3 v_plus = particlePlaneResponse(m, v, n, epsilon);
+  // What a failure needs to name its bug: the inputs, and v+ = v - (1 + epsilon)(v . n) n
+  CAPTURE(m, epsilon);
+  INFO("n = " << n.transpose() << ", v- = " << v.transpose());
+  INFO("expected v+ = " << (v - (1.0 + epsilon) * v.dot(n) * n).transpose() << ", yours " << v_plus.transpose());
   // One multiply-add per component: round-off relative to |v|.
   CHECK(std::abs(v_plus.dot(n) + epsilon * v.dot(n)) <= 1e-12 * v.norm());
   CHECK((v_plus - v_plus.dot(n) * n - (v - v.dot(n) * n)).norm() <= 1e-12 * v.norm());
@@ -325,6 +329,9 @@ TEST_CASE("particle-plane: bad input is refused naming it; epsilon exactly 0 and
   if (v.dot(n) > 0.0) v = -v;
   // The ends of [0, 1] and a normal whose length is 1 up to round-off (far inside 1e-9) are valid
   const Vec3 stopped = particlePlaneResponse(m, v, n, 0.0);
+  CAPTURE(m);
+  INFO("n = " << n.transpose() << ", v- = " << v.transpose() << "; epsilon 0: expected v+ = "
+       << (v - v.dot(n) * n).transpose() << ", yours " << stopped.transpose());
   CHECK(std::abs(stopped.dot(n)) <= 1e-12 * v.norm());  // v - (v . n) n: round-off only
   CHECK(particlePlaneResponse(m, v, n, 1.0).dot(n) == Approx(-v.dot(n)).epsilon(1e-12));
   CHECK_NOTHROW(particlePlaneResponse(m, v, Vec3(n * (1.0 + 1e-12)), 0.5));
