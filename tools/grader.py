@@ -1128,7 +1128,7 @@ def unwritten(t: TestCase) -> tuple:
         return "a function not written yet", ""
     function, lab, section = m.group(1), m.group(2), int(m.group(3))
     if lab != t.stage[:2].lstrip("0"):
-        return function, f"Lab {lab}"
+        return function, f"Lab {lab} handout, section {section}"
     unit = section_files(t.stage).get(section)
     return function, f"{unit}.cpp" if unit else f"handout section {section}"
 
