@@ -1194,13 +1194,14 @@ def report(results: list, seed: int, title: str) -> str:
         out += grouped_lines(other) + todo_lines(todo)
         out += [test_line(t) for t in passed]
         failing = len(broke) + len(other)
-        fix = f"; fix first: {broke[0].name}" if broke else ""
+        first_fix = broke[0].name if broke else ("the build's first error above" if r.compile_error else "")
+        fix = f"; fix first: {first_fix}" if first_fix else ""
         out.append(f" summary: {got:g} / {possible:g} points; {len(passed)} pass, {failing} fail, "
                    f"{len(todo)} todo{fix}")
         counts["pass"] += len(passed)
         counts["fail"] += failing
         counts["todo"] += len(todo)
-        first = first or (f"lab {r.stage}: {broke[0].name}" if broke else "")
+        first = first or (f"lab {r.stage}: {first_fix}" if first_fix else "")
         out.append("")
     fix = f"; fix first: {first}" if first else ""
     out.append(f"TOTAL: {earned:g} / {total:g} points; {counts['pass']} pass, {counts['fail']} fail, "
