@@ -32,6 +32,7 @@ MUTANTS = ROOT / "tests" / "hidden" / "mutants"
 SOLUTIONS = ROOT / "solutions"
 TARGET_RE = re.compile(r"^\+\+\+ b/solutions/(\d\d_[a-z0-9_]+/\S+)", re.MULTILINE)
 OUTPUT_LIMIT = 1500  # characters of compiler or apply errors shown for an invalid mutant
+NUMBER_RE = re.compile(r"(?<![\w.])\d")  # a number written in a check, not a digit of a name (v_3)
 
 
 @dataclass
@@ -170,11 +171,14 @@ def failing_in(exe: Path, stage: str, seed: int, timeout: float) -> list:
 
 def shows_value(case) -> bool:
     """Whether a failed test case (a node of Catch2's XML report) shows the student a value: a
-    failed check whose expansion holds a number, or an INFO/CAPTURE message in scope of a failure."""
+    failed check whose expansion holds a number, an INFO/CAPTURE message in scope of a failure,
+    or a failed check on inputs written out as numbers (refuse(f(0.5, -1))): the check's text
+    is the value."""
     found = []
     failures_in(case, found)
-    return any(notes or any(d.startswith("actual: ") and re.search(r"\d", d) for d in details)
-               for _, _, details, notes in found)
+    return any(notes or (what.endswith(") failed") and NUMBER_RE.search(expression))
+               or any(d.startswith("actual: ") and re.search(r"\d", d) for d in details)
+               for (_, expression), (what, _), details, notes in found)
 
 
 def unexplained(stage: str, failed: list) -> list:
