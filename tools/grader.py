@@ -441,7 +441,7 @@ def describe_failure(output: str) -> tuple:
     for note in (found[0][3] if found else []):
         m = CAPTURED_RE.match(note)
         if m:
-            captured[m.group(1)] = clean(m.group(2))[:80]
+            captured[m.group(1)] = short_number(clean(m.group(2)))[:80]
     actual = next((d[len("actual: "):] for d in (found[0][2] if found else []) if d.startswith("actual: ")), "")
     sides = COMPARISON_RE.split(re.sub(r"\s+", " ", actual), maxsplit=1)  # Catch2 may wrap long sides
     if len(sides) == 3:  # the first failed comparison's two sides, as the test wrote them
@@ -1098,30 +1098,82 @@ def hint_of(case: TestCase) -> str:
 WAITS_RE = re.compile(r"not implemented: (\S+) \(see Lab (\d+) handout, sections? (\d+)")
 
 
-def waits_for(case: TestCase) -> str:
-    """For a test stopped by an unwritten function outside the files it grades: which function,
-    and that grading uses the reference there. Empty otherwise."""
-    m = WAITS_RE.search(case.output)
+# Statuses of a test that ran and broke: the failures a student can act on, shown in full
+BROKE = ("failed", "crashed", "timed out")
+
+
+def test_line(t: TestCase) -> str:
+    """A test's one line: status, points earned/possible (framework tests: -), name, marks."""
+    pts = f"{t.points if t.passed else 0:g}/{t.points:g}" if t.graded else "  - "
+    extra = " [hidden]" if t.hidden else (" [framework]" if not t.graded else "")
+    return f" {SYMBOL[t.status]} {pts:>6}  {t.name}{extra}"
+
+
+def failure_block(t: TestCase) -> list:
+    """A broken test: its line, what its checks saw (the values), its hint, the handout's section."""
+    lines = [test_line(t)] + ["            " + l for l in t.output.splitlines()[:12]]
+    hint = hint_of(t)
+    if hint:
+        lines += indented("            ", hint)
+    if not t.hidden:
+        lines.append("            " + handout_hint(t))
+    return lines
+
+
+def unwritten(t: TestCase) -> tuple:
+    """What an unwritten test waits for, as (function, where): its stub's message names the function
+    and its handout section, and the lab's stubs name the file of that section."""
+    m = WAITS_RE.search(t.output)
     if not m:
-        return ""
+        return "a function not written yet", ""
     function, lab, section = m.group(1), m.group(2), int(m.group(3))
-    if lab != case.stage[:2].lstrip("0"):
-        return (f"waits for {function} of Lab {lab}, not written yet in your copy (graded with the "
-                f"reference of Lab {lab})")
-    unit = section_files(case.stage).get(section)
-    if unit is None or unit in case.units:
-        return ""
-    if not case.units:  # a framework test: it grades no file of the student's
-        return f"waits for {function} ({unit}.cpp), not written yet"
-    return (f"waits for {function} ({unit}.cpp), not written yet: this test grades "
-            f"{', '.join(sorted(u + '.cpp' for u in case.units))}, and grading runs it with the "
-            f"reference's {unit}.cpp")
+    if lab != t.stage[:2].lstrip("0"):
+        return function, f"Lab {lab} handout, section {section}"
+    unit = section_files(t.stage).get(section)
+    return function, f"{unit}.cpp" if unit else f"handout section {section}"
+
+
+def todo_lines(tests: list) -> list:
+    """One line per unwritten function, the function most tests wait for first."""
+    groups = {}
+    for t in tests:
+        groups.setdefault(unwritten(t), []).append(t)
+    order = sorted(groups, key=lambda key: -len(groups[key]))  # stable: ties keep the tests' order
+    lines = []
+    for function, place in order:
+        cases = groups[(function, place)]
+        points = sum(t.points for t in cases if t.graded)
+        count = f"{len(cases)} test{'s' if len(cases) > 1 else ''}"
+        worth = f" ({points:g} point{'' if points == 1 else 's'})" if points else ""
+        lines.append(f" TODO: {count}{worth} wait{'' if len(cases) > 1 else 's'} for {function}"
+                     + (f" ({place})" if place else ""))
+    return lines
+
+
+def grouped_lines(tests: list) -> list:
+    """Tests that did not run their checks (not compiled, not run, not graded): one line per status
+    and reason."""
+    groups = {}
+    for t in tests:
+        groups.setdefault((t.status, (t.output.strip().splitlines() or [""])[0]), []).append(t)
+    lines = []
+    for (status, why), cases in groups.items():
+        if len(cases) == 1:
+            lines.append(test_line(cases[0]) + (f": {why}" if why else ""))
+        else:
+            lines.append(f" {SYMBOL[status]}: {len(cases)} tests {status}" + (f": {why}" if why else ""))
+    return lines
 
 
 def report(results: list, seed: int, title: str) -> str:
+    """The report, per lab: what the student can act on first (tests that broke, with their values,
+    hint and handout section; visible before hidden), then one line per unwritten function, the
+    passes, and a summary naming the failure to fix first. Deterministic: the tests' own order."""
     out = [title, f"random seed: {seed} (rerun one test: build/test_NN_name_labs \"<test name>\" "
                   f"--rng-seed {seed})", ""]
     total = earned = 0.0
+    counts = {"pass": 0, "fail": 0, "todo": 0}
+    first = ""
     for r in results:
         graded = [t for t in r.tests if t.graded]
         got = sum(t.points for t in graded if t.passed)
@@ -1133,23 +1185,27 @@ def report(results: list, seed: int, title: str) -> str:
         if r.compile_error:
             out.append("   did not compile; every test of this lab scores 0. The build says:")
             out += ["   | " + l for l in r.compile_error.strip().splitlines()[-40:]]
-        for t in r.tests:
-            pts = f"{t.points if t.passed else 0:g}/{t.points:g}" if t.graded else "  - "
-            extra = " [hidden]" if t.hidden else (" [framework]" if not t.graded else "")
-            out.append(f" {SYMBOL[t.status]} {pts:>6}  {t.name}{extra}")
-            if not t.passed and t.status != "not compiled":
-                waiting = waits_for(t) if t.status == "not implemented" else ""
-                if waiting:
-                    out.append("            " + waiting)
-                out += ["            " + l for l in t.output.splitlines()[:12]]
-                hint = hint_of(t)
-                if hint:
-                    out += indented("            ", hint)
-                # A stub's message names its section already; a wrong answer gets the pointer here
-                if t.status != "not implemented" and not t.hidden:
-                    out.append("            " + handout_hint(t))
+        broke = sorted((t for t in r.tests if t.status in BROKE), key=lambda t: t.hidden)
+        todo = [t for t in r.tests if t.status == "not implemented"]
+        passed = [t for t in r.tests if t.passed]
+        other = [t for t in r.tests if not t.passed and t not in broke and t not in todo]
+        for t in broke:
+            out += failure_block(t)
+        out += grouped_lines(other) + todo_lines(todo)
+        out += [test_line(t) for t in passed]
+        failing = len(broke) + len(other)
+        first_fix = broke[0].name if broke else ("the build's first error above" if r.compile_error else "")
+        fix = f"; fix first: {first_fix}" if first_fix else ""
+        out.append(f" summary: {got:g} / {possible:g} points; {len(passed)} pass, {failing} fail, "
+                   f"{len(todo)} todo{fix}")
+        counts["pass"] += len(passed)
+        counts["fail"] += failing
+        counts["todo"] += len(todo)
+        first = first or (f"lab {r.stage}: {first_fix}" if first_fix else "")
         out.append("")
-    out.append(f"TOTAL: {earned:g} / {total:g} points")
+    fix = f"; fix first: {first}" if first else ""
+    out.append(f"TOTAL: {earned:g} / {total:g} points; {counts['pass']} pass, {counts['fail']} fail, "
+               f"{counts['todo']} todo{fix}")
     return clean("\n".join(out))
 
 

@@ -7,8 +7,11 @@ applies it to a scratch copy of the reference, builds the lab's test executables
 copy (one build folder, configured once, so each mutant recompiles one file), and runs the lab's
 graded tests, hidden ones included, with a few seeds. A mutant is *caught* when some graded test
 that grades its file fails (as the grader links it: see grades()), *survived*
-when all pass, and *invalid* when it does not apply or does not compile. Called by
-`./physlab mutants [NN...]`; see `mutants.py --help`.
+when all pass, and *invalid* when it does not apply or does not compile. Each visible graded test
+that catches a mutant must also tell the student why: its failure shows at least one value (a
+Catch2 expansion with a number, or an INFO/CAPTURE message) and the test has a hint in
+tests/NN_name/hints.toml; the tests that do not are listed as *unexplained*. Called by
+`./physlab mutants [NN...] [--only NAME...]`; see `mutants.py --help`.
 """
 
 import argparse
@@ -22,13 +25,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from grader import section_files  # noqa: E402  (the grader's table of handout sections and files)
+from grader import failures_in, hint_table, section_files  # noqa: E402  (the grader's reading of Catch2's report)
 
 ROOT = Path(__file__).resolve().parent.parent
 MUTANTS = ROOT / "tests" / "hidden" / "mutants"
 SOLUTIONS = ROOT / "solutions"
 TARGET_RE = re.compile(r"^\+\+\+ b/solutions/(\d\d_[a-z0-9_]+/\S+)", re.MULTILINE)
 OUTPUT_LIMIT = 1500  # characters of compiler or apply errors shown for an invalid mutant
+NUMBER_RE = re.compile(r"(?<![\w.])\d")  # a number written in a check, not a digit of a name (v_3)
 
 
 @dataclass
@@ -41,6 +45,7 @@ class Mutant:
     status: str = "not run"  # caught | survived | invalid
     detail: str = ""
     catchers: list = field(default_factory=list)
+    unexplained: list = field(default_factory=list)  # visible catchers without a value or a hint
 
     @property
     def name(self) -> str:
@@ -68,10 +73,13 @@ def select_stages(wanted: list) -> list:
     return chosen
 
 
-def load_mutants(stages: list) -> list:
+def load_mutants(stages: list, only: list = ()) -> list:
+    """The mutants of the stages; with `only`, those whose file name (without .patch) is listed."""
     mutants = []
     for stage in stages:
         for path in sorted((MUTANTS / stage).glob("*.patch")):
+            if only and path.stem not in only:
+                continue
             first = (path.read_text().splitlines() or [""])[0]
             bug = first[1:].strip() if first.startswith("#") else "(no description)"
             mutants.append(Mutant(stage, path, bug))
@@ -134,8 +142,8 @@ def build_targets(build: Path, targets: list, jobs: int) -> subprocess.Completed
 
 
 def failing_tests(build: Path, targets: list, stage: str, seed: int, timeout: float) -> list:
-    """(name, tags) of the lab's graded tests that fail with this seed; a crash or a hang counts
-    as a failure of the whole run (named by what happened, tags None)."""
+    """(name, tags, shows a value) of the lab's graded tests that fail with this seed; a crash or
+    a hang counts as a failure of the whole run (named by what happened, tags None)."""
     failed = []
     for target in targets:
         failed += failing_in(build / target, stage, seed, timeout)
@@ -148,17 +156,43 @@ def failing_in(exe: Path, stage: str, seed: int, timeout: float) -> list:
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout,
                               errors="replace")
     except subprocess.TimeoutExpired:
-        return [(f"({exe.name} timed out after {timeout:g} s)", None)]
+        return [(f"({exe.name} timed out after {timeout:g} s)", None, True)]
     try:
         tree = ET.fromstring(proc.stdout)
     except ET.ParseError:
-        return [(f"({exe.name} crashed: exit status {proc.returncode})", None)]
-    failed = [(case.get("name"), case.get("tags", "")) for case in tree.iter("TestCase")
+        return [(f"({exe.name} crashed: exit status {proc.returncode})", None, True)]
+    failed = [(case.get("name"), case.get("tags", ""), shows_value(case)) for case in tree.iter("TestCase")
               if case.find("OverallResult") is not None
               and case.find("OverallResult").get("success") != "true"]
     if not failed and proc.returncode != 0:
-        failed = [(f"({exe.name} exit status {proc.returncode})", None)]
+        failed = [(f"({exe.name} exit status {proc.returncode})", None, True)]
     return failed
+
+
+def shows_value(case) -> bool:
+    """Whether a failed test case (a node of Catch2's XML report) shows the student a value: a
+    failed check whose expansion holds a number, an INFO/CAPTURE message in scope of a failure,
+    or a failed check on inputs written out as numbers (refuse(f(0.5, -1))): the check's text
+    is the value."""
+    found = []
+    failures_in(case, found)
+    return any(notes or (what.endswith(") failed") and NUMBER_RE.search(expression))
+               or any(d.startswith("actual: ") and re.search(r"\d", d) for d in details)
+               for (_, expression), (what, _), details, notes in found)
+
+
+def unexplained(stage: str, failed: list) -> list:
+    """The visible tests among `failed` whose failure shows no value or that have no hint, as
+    "test name: what is missing"."""
+    hints = hint_table(stage, False)
+    found = []
+    for name, tags, value in failed:
+        if tags is None or "[hidden]" in tags:
+            continue
+        missing = [what for what, ok in (("no value", value), ("no hint", name in hints)) if not ok]
+        if missing:
+            found.append(f"{name}: {', '.join(missing)}")
+    return found
 
 
 def grades(stage: str, tags, units: set) -> bool:
@@ -183,7 +217,7 @@ def check_reference(build: Path, targets: list, stage: str, seeds: list, jobs: i
         failed = failing_tests(build, targets, stage, seed, timeout)
         if failed:
             sys.exit(f"mutants: the reference of {stage} fails with seed {seed}: "
-                     f"{', '.join(name for name, _ in failed)}")
+                     f"{', '.join(name for name, _, _ in failed)}")
 
 
 def judge(mutant: Mutant, build: Path, targets: list, labs: Path, seeds: list, jobs: int,
@@ -202,11 +236,13 @@ def judge(mutant: Mutant, build: Path, targets: list, labs: Path, seeds: list, j
             return
         units = {Path(f).stem for f in mutant.files}
         for seed in seeds:
-            failed = [name for name, tags in failing_tests(build, targets, mutant.stage, seed, timeout)
+            failed = [(name, tags, value) for name, tags, value
+                      in failing_tests(build, targets, mutant.stage, seed, timeout)
                       if grades(mutant.stage, tags, units)]
             if failed:
-                mutant.status, mutant.catchers = "caught", failed
+                mutant.status, mutant.catchers = "caught", [name for name, _, _ in failed]
                 mutant.detail = f"seed {seed}"
+                mutant.unexplained = unexplained(mutant.stage, failed)
                 return
         mutant.status = "survived"
     finally:
@@ -223,6 +259,13 @@ def summary(mutants: list) -> str:
             lines.append(f"  SURVIVED  {m.name}: {m.bug}")
         else:
             lines.append(f"  INVALID   {m.name}: {m.detail}")
+    offenders = {}  # test -> what it lacks, and the mutants it caught so
+    for m in mutants:
+        for line in m.unexplained:
+            offenders.setdefault(f"{m.stage}: {line}", []).append(m.path.stem)
+    if offenders:
+        lines += ["", "UNEXPLAINED: visible tests that caught a mutant without showing a value or without a hint:"]
+        lines += [f"  {test} (caught {', '.join(names)})" for test, names in sorted(offenders.items())]
     lines.append("")
     total_caught = total_valid = 0
     for stage in sorted({m.stage for m in mutants}):
@@ -233,7 +276,8 @@ def summary(mutants: list) -> str:
         invalid = len(of_stage) - len(valid)
         lines.append(f"{stage}: {caught}/{len(valid)} caught ({rate(caught, len(valid))})"
                      + (f", {invalid} invalid" if invalid else ""))
-    lines.append(f"total: {total_caught}/{total_valid} caught ({rate(total_caught, total_valid)})")
+    lines.append(f"total: {total_caught}/{total_valid} caught ({rate(total_caught, total_valid)})"
+                 + (f"; {len(offenders)} visible tests unexplained" if offenders else ""))
     return "\n".join(lines)
 
 
@@ -251,13 +295,18 @@ def main() -> int:
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     parser.add_argument("--timeout", type=float, default=300.0,
                         help="seconds one run of a lab's tests may take (a hang counts as caught)")
+    parser.add_argument("--only", nargs="+", default=[], metavar="NAME",
+                        help="only these mutants: patch names without .patch (impulse-sign ...)")
     parser.add_argument("--applies", action="store_true",
                         help="only check that every patch applies to solutions/ (seconds, no build)")
     args = parser.parse_args()
 
     stages = select_stages(args.labs)
+    mutants = load_mutants(stages, args.only)
+    unknown = sorted(set(args.only) - {m.path.stem for m in mutants})
+    if unknown:
+        sys.exit(f"mutants: no mutant named {', '.join(unknown)} in {' '.join(stages)}")
     if args.applies:
-        mutants = load_mutants(stages)
         problems = stale(mutants)
         print("\n".join(problems + [f"mutants: {len(mutants) - len(problems)} of {len(mutants)} patches apply"]))
         return 1 if problems else 0
@@ -265,9 +314,9 @@ def main() -> int:
     labs = build / "scratch" / "labs"
     seeds = list(range(1, args.seeds + 1))
 
+    stages = [s for s in stages if any(m.stage == s for m in mutants)]
     sync_scratch(labs)
     configure(build, labs)
-    mutants = load_mutants(stages)
     for stage in stages:
         print(f"==> {stage}: checking the reference, then {sum(m.stage == stage for m in mutants)} mutants",
               file=sys.stderr, flush=True)
@@ -279,7 +328,7 @@ def main() -> int:
             judge(m, build, targets, labs, seeds, args.jobs, args.timeout)
             print(f"    {m.status:8s}  {m.name}", file=sys.stderr, flush=True)
     print(summary(mutants))
-    return 1 if any(m.status == "invalid" for m in mutants) else 0
+    return 1 if any(m.status == "invalid" or m.unexplained for m in mutants) else 0
 
 
 if __name__ == "__main__":

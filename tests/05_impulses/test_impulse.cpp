@@ -16,6 +16,10 @@ TEST_CASE("particle-plane: the normal velocity reverses and shrinks by epsilon, 
   Vec3 v = randomVec3(5.0);
   if (v.dot(n) > 0) v = -v;
   const Vec3 v_plus = particlePlaneResponse(m, v, n, epsilon);
+  // What a failure needs to name its bug: the inputs, and v+ = v - (1 + epsilon)(v . n) n
+  CAPTURE(m, epsilon);
+  INFO("n = " << n.transpose() << ", v- = " << v.transpose());
+  INFO("expected v+ = " << (v - (1.0 + epsilon) * v.dot(n) * n).transpose() << ", yours " << v_plus.transpose());
   // One multiply-add per component: round-off relative to |v|.
   CHECK(std::abs(v_plus.dot(n) + epsilon * v.dot(n)) <= 1e-12 * v.norm());
   CHECK((v_plus - v_plus.dot(n) * n - (v - v.dot(n) * n)).norm() <= 1e-12 * v.norm());
@@ -189,6 +193,7 @@ TEST_CASE("friction: below mu j the contact sticks, above it slides with |j_t| =
   A.I_inv_world = Mat3::Identity() / (0.4 * m * r * r);
   const Vec3 p = Vec3::Zero(), n = Vec3::UnitZ();
   const Vec3 v = A.v + A.omega.cross(p - A.x), v_t = v - v.dot(n) * n;
+  INFO("sphere of mass " << m << " and radius " << r << " on the fixed ground (n = z), slip v_t = " << v_t.transpose());
   // Sticking: a large bound lets the impulse stop the sliding
   ContactBody stuck = A, ground_copy = ground;
   const Vec3 J = frictionImpulse(stuck, ground_copy, p, n, 1e6);
@@ -324,7 +329,12 @@ TEST_CASE("particle-plane: bad input is refused naming it; epsilon exactly 0 and
   Vec3 v = randomVec3(2.0);
   if (v.dot(n) > 0.0) v = -v;
   // The ends of [0, 1] and a normal whose length is 1 up to round-off (far inside 1e-9) are valid
+  CAPTURE(m);
+  INFO("n = " << n.transpose() << ", v- = " << v.transpose());
+  CHECK_NOTHROW(particlePlaneResponse(m, v, n, 0.0));
+  CHECK_NOTHROW(particlePlaneResponse(m, v, n, 1.0));
   const Vec3 stopped = particlePlaneResponse(m, v, n, 0.0);
+  INFO("epsilon 0: expected v+ = " << (v - v.dot(n) * n).transpose() << ", yours " << stopped.transpose());
   CHECK(std::abs(stopped.dot(n)) <= 1e-12 * v.norm());  // v - (v . n) n: round-off only
   CHECK(particlePlaneResponse(m, v, n, 1.0).dot(n) == Approx(-v.dot(n)).epsilon(1e-12));
   CHECK_NOTHROW(particlePlaneResponse(m, v, Vec3(n * (1.0 + 1e-12)), 0.5));
@@ -409,7 +419,10 @@ TEST_CASE("rigid impulse: bad input to the impulse functions is refused naming i
 
 TEST_CASE("friction: a normal that is not unit and a negative or NaN j_max are refused; j_max = 0 and +infinity are allowed", "[lab05][pts=1][sec=4]") {
   const RandomPair s = randomPair();
+  INFO("n = " << s.n.transpose() << ", p = " << s.p.transpose());
   // +infinity is "no bound" (the solvers pass it), 0 is "no friction": both valid
+  CHECK_NOTHROW(frictionImpulse(s.A, s.B, s.p, s.n, kInf));
+  CHECK_NOTHROW(frictionImpulse(s.A, s.B, s.p, s.n, 0.0));
   const Vec3 unbounded = frictionImpulse(s.A, s.B, s.p, s.n, kInf);
   CHECK(std::isfinite(unbounded.norm()));
   CHECK(frictionImpulse(s.A, s.B, s.p, s.n, 0.0) == Vec3::Zero());
