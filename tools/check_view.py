@@ -11,8 +11,10 @@ resolves nowhere, every request goes to a proxy that is not there), and must
   - draw the scene: in a screenshot the 3-D canvas (a band under the header) is mostly the
     scene's background colour (so three.js rendered it) and at least 1% of it is something else;
   - step to the last frame: opened at #frame=last, its DOM shows frame N of N, N being the
-    frame count of the replay inlined in the page (of the shorter one when two are shown), and no
-    error box.
+    frame count of the replay inlined in the page (of the first, the student's, when two are shown:
+    the other is matched by time), and no error box;
+  - label its energy plot: the legend says what the axis holds, energies in J or the total's
+    relative drift.
 With --measure it also prints how long a page takes to show each frame in turn (#measure: the
 poses, the contacts drawn, the panel and the energy plot, waiting for the GPU after each), median
 and slowest: a figure, not a check (Chromium here renders in software, SwiftShader, on a shared
@@ -119,12 +121,13 @@ def canvas_problems(path):
 
 
 def expected_frames(text):
-    """The frame count the page should show: of its shorter replay."""
+    """The frame count the page should show: of its first replay."""
     match = re.search(r'<script type="application/json" id="physlab-data">(.*?)</script>', text, re.S)
     data = json.loads(match.group(1))
     if "error" in data:
         raise ReplayError(f"the page shows an error: {data['error']}")
-    return min(len(parse_replay(base64.b64decode(r["base64"]), r["name"])["frames"]) for r in data["replays"])
+    first = data["replays"][0]
+    return len(parse_replay(base64.b64decode(first["base64"]), first["name"])["frames"])
 
 
 def element_text(dom, element_id):
@@ -159,6 +162,10 @@ def check(browser, page):
     shown = (element_text(dom, "frame-index"), element_text(dom, "frame-count"))
     if shown != (str(frames), str(frames)):
         problems.append(f"at #frame=last it shows frame {shown[0]} of {shown[1]}, not {frames} of {frames}")
+    legend = re.search(r'<span id="energy-legend">(.*?)</span><span id="legend-reference"', dom, re.S)
+    if not legend or not re.search(r"\[J\]|drift", legend.group(1)):
+        problems.append("the energy plot's legend names neither joules nor drift: "
+                        f"{legend.group(1) if legend else 'no legend'}")
     error = re.search(r'<div id="error"(?![^>]*hidden)[^>]*>([^<]*)<', dom)
     if error:
         problems.append(f"shows an error: {html.unescape(error.group(1))}")
