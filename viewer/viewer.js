@@ -345,7 +345,7 @@
       }
     });
     const e0 = totals[0][0];
-    const axis = !flat ? "energy [J]" : e0 !== 0 ? "(E - E0)/|E0|" : "E - E0 [J]";
+    const axis = !flat ? "energy [J]" : e0 !== 0 ? "(E-E0)/|E0|" : "E-E0 [J]";
     const legend = !flat
       ? '<span style="color:#d0453b">kinetic</span>, <span style="color:#3b7dd8">potential</span> and total (black) [J]'
       : `the total is flat (E0 = ${e0.toPrecision(4)} J), so the plot shows its ${e0 !== 0 ? "relative drift (E - E0)/|E0|" : "drift E - E0 [J]"}`;
@@ -380,7 +380,7 @@
       g.fillText(tickText(t, tTicks.length > 1 ? tTicks[1] - tTicks[0] : 1), x(t), h - bottom + 4);
     }
     g.fillText("t [s]", w - right - 14, h - 12);
-    g.save(); g.translate(10, top + (h - top - bottom) / 2); g.rotate(-Math.PI / 2); g.textBaseline = "middle";
+    g.save(); g.font = "10px sans-serif"; g.translate(10, top + (h - top - bottom) / 2); g.rotate(-Math.PI / 2); g.textBaseline = "middle";
     g.fillText(plot.axis, 0, 0); g.restore();
     for (const s of plot.series) {
       g.strokeStyle = s.colour; g.setLineDash(s.dash); g.lineWidth = 1.5; g.beginPath();
