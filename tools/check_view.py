@@ -8,7 +8,7 @@ resolves nowhere, every request goes to a proxy that is not there), and must
   - ask for nothing beyond the machine: Chromium's net log (--log-net-log) holds no request that
     the page started (the browser's own background requests, initiator "not an origin", are
     Chromium's, not the page's), and outside the inlined three.js the page names no http(s) URL;
-  - draw the scene: in a screenshot the 3-D canvas (a band under the header) is mostly the
+  - draw the scene: in a screenshot the 3-D canvas (the window's middle third) is mostly the
     scene's background colour (so three.js rendered it) and at least 1% of it is something else;
   - step to the last frame: opened at #frame=last, its DOM shows frame N of N, N being the
     frame count of the replay inlined in the page (of the first, the student's, when two are shown:
@@ -106,8 +106,9 @@ def png_pixels(path):
 def canvas_problems(path):
     """What is wrong with the 3-D canvas in the screenshot: not rendered, or nothing in it."""
     width, height, rows = png_pixels(path)
-    # The canvas: under the header and any notes, left of a scroll bar
-    band = [p for row in rows[height // 4:height // 2] for p in row[:width - 40]]
+    # The canvas: under the header and any notes (a recorded reference's note and the comparison's
+    # banner push it down by a third of the window), above the controls, left of a scroll bar
+    band = [p for row in rows[height // 3:2 * height // 3] for p in row[:width - 40]]
     counts = {}
     for p in band:
         counts[p] = counts.get(p, 0) + 1
