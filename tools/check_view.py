@@ -8,11 +8,14 @@ resolves nowhere, every request goes to a proxy that is not there), and must
   - ask for nothing beyond the machine: Chromium's net log (--log-net-log) holds no request that
     the page started (the browser's own background requests, initiator "not an origin", are
     Chromium's, not the page's), and outside the inlined three.js the page names no http(s) URL;
-  - draw the scene: in a screenshot the 3-D canvas (a band under the header) is mostly the
-    scene's background colour (so three.js rendered it) and at least 1% of it is something else;
+  - draw the scene: in a screenshot the 3-D canvas (the window's middle third) is not one colour:
+    at least 1% of it differs from its most common colour (a canvas three.js did not draw is the
+    page's background, or black, all over; a ground plane may fill most of a drawn one);
   - step to the last frame: opened at #frame=last, its DOM shows frame N of N, N being the
-    frame count of the replay inlined in the page (of the shorter one when two are shown), and no
-    error box.
+    frame count of the replay inlined in the page (of the first, the student's, when two are shown:
+    the other is matched by time), and no error box;
+  - label its energy plot: the legend says what the axis holds, energies in J or the total's
+    relative drift.
 With --measure it also prints how long a page takes to show each frame in turn (#measure: the
 poses, the contacts drawn, the panel and the energy plot, waiting for the GPU after each), median
 and slowest: a figure, not a check (Chromium here renders in software, SwiftShader, on a shared
@@ -104,27 +107,30 @@ def png_pixels(path):
 def canvas_problems(path):
     """What is wrong with the 3-D canvas in the screenshot: not rendered, or nothing in it."""
     width, height, rows = png_pixels(path)
-    # The canvas: under the header and any notes, left of a scroll bar
-    band = [p for row in rows[height // 4:height // 2] for p in row[:width - 40]]
+    # The canvas: under the header and any notes (a recorded reference's note and the comparison's
+    # banner push it down by a third of the window), above the controls, left of a scroll bar
+    band = [p for row in rows[height // 3:2 * height // 3] for p in row[:width - 40]]
     counts = {}
     for p in band:
         counts[p] = counts.get(p, 0) + 1
     common = max(counts, key=counts.get)
-    if max(abs(a - b) for a, b in zip(common, CANVAS_BACKGROUND)) > 8:
-        return [f"the canvas was not rendered: mostly {common}, not the scene's background {CANVAS_BACKGROUND}"]
-    drawn = sum(n for p, n in counts.items() if max(abs(a - b) for a, b in zip(p, CANVAS_BACKGROUND)) > 8)
+    drawn = len(band) - counts[common]
+    # A canvas three.js did not draw is one colour: the page's (the scene's background) or black
     if drawn < len(band) // 100:
+        if max(abs(a - b) for a, b in zip(common, CANVAS_BACKGROUND)) > 8:
+            return [f"the canvas was not rendered: it is {common} all over, not the scene's background {CANVAS_BACKGROUND}"]
         return [f"the canvas shows almost nothing: {drawn} of {len(band)} pixels differ from its background"]
     return []
 
 
 def expected_frames(text):
-    """The frame count the page should show: of its shorter replay."""
+    """The frame count the page should show: of its first replay."""
     match = re.search(r'<script type="application/json" id="physlab-data">(.*?)</script>', text, re.S)
     data = json.loads(match.group(1))
     if "error" in data:
         raise ReplayError(f"the page shows an error: {data['error']}")
-    return min(len(parse_replay(base64.b64decode(r["base64"]), r["name"])["frames"]) for r in data["replays"])
+    first = data["replays"][0]
+    return len(parse_replay(base64.b64decode(first["base64"]), first["name"])["frames"])
 
 
 def element_text(dom, element_id):
@@ -159,6 +165,10 @@ def check(browser, page):
     shown = (element_text(dom, "frame-index"), element_text(dom, "frame-count"))
     if shown != (str(frames), str(frames)):
         problems.append(f"at #frame=last it shows frame {shown[0]} of {shown[1]}, not {frames} of {frames}")
+    legend = re.search(r'<span id="energy-legend">(.*?)</span><span id="legend-reference"', dom, re.S)
+    if not legend or not re.search(r"\[J\]|drift", legend.group(1)):
+        problems.append("the energy plot's legend names neither joules nor drift: "
+                        f"{legend.group(1) if legend else 'no legend'}")
     error = re.search(r'<div id="error"(?![^>]*hidden)[^>]*>([^<]*)<', dom)
     if error:
         problems.append(f"shows an error: {html.unescape(error.group(1))}")

@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """Turn replay files into a self-contained viewer page (./physlab view NN runs it).
 
-  view.py REPLAY --out PAGE.html [--reference REPLAY] [--note TEXT] [--tolerance METRES]
+  view.py REPLAY --out PAGE.html [--reference REPLAY] [--label TEXT] [--reference-label TEXT]
+          [--note TEXT] [--tolerance METRES]
   view.py --error TEXT --out PAGE.html
 
 One replay: the page plays it. With --reference: REPLAY is the student's run and the page shows
-both side by side under one camera, with the first frame where a body's position differs by more
-than --tolerance (default 1 mm) or its orientation by more than 1 mrad (or a particle's position by
-more than the tolerance) marked on the time slider and named. --note: a line shown on the page (the
+both side by side under one camera (--label and --reference-label name them), with the first frame
+where a body's position differs by more than --tolerance (default 1 mm) or its orientation by more
+than 1 mrad (or a particle's position by more than the tolerance) marked on the time slider and
+named. Frames are matched by time: a reference recorded by ./physlab publish holds fewer frames
+(thinned), and is compared at the frames it holds. --note: a line shown on the page (the
 student's lab is not written yet, so only the reference is shown). --error: a page that says what
 went wrong instead of a blank one.
 
@@ -34,6 +37,10 @@ ORBIT = THREE_DIR / "examples" / "js" / "controls" / "OrbitControls.js"
 MAGIC = b"PHYSLAB-REPLAY"
 VERSION = 2
 KINDS = ("sphere", "box", "capsule", "plane", "convex")
+# In a run's settings: the framework answer did the work (World::describe(), Lab 6's matrix-free
+# sweeps), so the run is not the student's code, whatever build it came from
+FRAMEWORK_ANSWER = "(framework answer)"
+TIME_TOLERANCE = 1e-6  # s: the same step's time in two runs (float32 of the same double)
 ORIENTATION_TOLERANCE = 1e-3  # rad: 1 mrad, the angle a 1 m body turns to move its end by 1 mm
 
 
@@ -51,7 +58,7 @@ def read_replay(path):
 
 
 def parse_replay(data, path):
-    """The replay in `data` (named `path` in messages) as a dict: title, bodies (kind, fixed),
+    """The replay in `data` (named `path` in messages) as a dict: title, settings, bodies (kind, fixed),
     particle count, frames (time, poses, particles) and its bytes."""
     at = 0
 
@@ -100,16 +107,31 @@ def parse_replay(data, path):
         raise ReplayError(f"replay {path}: {len(data) - at} bytes after the last frame, at byte {at}")
     if not frames:
         raise ReplayError(f"replay {path}: no frames")
-    return {"title": texts[0], "bodies": bodies, "particles": particles_n, "frames": frames, "bytes": data}
+    return {"title": texts[0], "settings": texts[1], "bodies": bodies, "particles": particles_n, "frames": frames, "bytes": data}
+
+
+def matched_frames(student, reference):
+    """(student frame index, reference frame index) of the frames both runs recorded at the same
+    time: every frame when both are whole, the reference's when it was thinned (./physlab publish)."""
+    pairs, f = [], 0
+    for g, r in enumerate(reference["frames"]):
+        while f < len(student["frames"]) and student["frames"][f]["time"] < r["time"] - TIME_TOLERANCE:
+            f += 1
+        if f == len(student["frames"]):
+            break
+        if abs(student["frames"][f]["time"] - r["time"]) <= TIME_TOLERANCE:
+            pairs.append((f, g))
+    return pairs
 
 
 def first_difference(student, reference, tolerance):
-    """(frame index or None, text): where the student's run first leaves the reference's."""
+    """(frame index or None, text): where the student's run first leaves the reference's, at the
+    frames both recorded (matched by time)."""
     if len(student["bodies"]) != len(reference["bodies"]) or student["particles"] != reference["particles"]:
         return 0, "The two runs do not have the same bodies or particles: they are not the same scene."
-    frames = min(len(student["frames"]), len(reference["frames"]))
-    for f in range(frames):
-        s, r = student["frames"][f], reference["frames"][f]
+    pairs = matched_frames(student, reference)
+    for f, g in pairs:
+        s, r = student["frames"][f], reference["frames"][g]
         for i, body in enumerate(student["bodies"]):
             a, b = s["poses"][7 * i:7 * i + 7], r["poses"][7 * i:7 * i + 7]
             gap = math.dist(a[:3], b[:3])
@@ -127,8 +149,10 @@ def first_difference(student, reference, tolerance):
             if not gap <= tolerance:
                 return f, (f"First difference at frame {f + 1} (t = {s['time']:.3f} s): particle {k} position "
                            f"differs by {1000 * gap:.3g} mm (tolerance {1000 * tolerance:g} mm).")
+    if not pairs:
+        return 0, "The two runs recorded no frame at the same time: they are not the same scene."
     same = (f"Your run and the reference agree within {1000 * tolerance:g} mm and "
-            f"{1000 * ORIENTATION_TOLERANCE:g} mrad over all {frames} frames.")
+            f"{1000 * ORIENTATION_TOLERANCE:g} mrad at all {len(pairs)} frames both recorded.")
     if len(student["frames"]) != len(reference["frames"]):
         same += f" (Yours has {len(student['frames'])} frames, the reference {len(reference['frames'])}.)"
     return None, same
@@ -159,6 +183,8 @@ def main():
     parser.add_argument("--out", required=True, help="the page to write")
     parser.add_argument("--reference", help="the reference's replay of the same scene: both side by side")
     parser.add_argument("--note", help="a note shown on the page")
+    parser.add_argument("--label", default="your code", help="what the first replay is, with --reference")
+    parser.add_argument("--reference-label", default="reference", help="what the --reference replay is")
     parser.add_argument("--tolerance", type=float, default=1e-3, help="position tolerance of the comparison [m]")
     parser.add_argument("--error", help="write a page that shows this error")
     args = parser.parse_args()
@@ -172,10 +198,13 @@ def main():
             raise ReplayError(args.error)
         if not args.replay:
             raise ReplayError("no replay named")
-        runs = [(args.replay, "your code" if args.reference else "")]
+        runs = [(args.replay, args.label if args.reference else "")]
         if args.reference:
-            runs.append((args.reference, "reference"))
+            runs.append((args.reference, args.reference_label))
         replays = [read_replay(path) for path, _ in runs]
+        if args.reference and FRAMEWORK_ANSWER in replays[0]["settings"]:
+            # The run took the framework answer's path, which calls no student function
+            runs[0] = (args.replay, "the framework's code (this scene runs none of yours)")
         title = replays[0]["title"]
         labels = [label for _, label in runs if label]
         if args.reference:

@@ -85,12 +85,17 @@
 
   // ---------------------------------------------------------------- scene building
   const KIND = { Sphere: 0, Box: 1, Capsule: 2, Plane: 3, Convex: 4 };
-  const COLOURS = { moving: 0x3b7dd8, fixed: 0x9a9a9a, particle: 0xd8743b, normal: 0xffcc00 };
+  const COLOURS = { fixed: 0x9a9a9a, particle: 0xd8743b, normal: 0xffcc00, edge: 0x202020 };
+  // A moving body's colour, by its index: neighbours in a stack or a row differ. Neither grey
+  // (fixed bodies) nor yellow (the contact normals).
+  const PALETTE = [0x4e79a7, 0xf28e2b, 0xe15759, 0x76b7b2, 0x59a14f, 0xb07aa1, 0xff9da7, 0x9c755f];
+  const colourOf = (body, i) => (body.fixed ? COLOURS.fixed : PALETTE[i % PALETTE.length]);
 
-  function material(fixed, opacity) {
+  // Polygon offset pushes faces back, so that the boxes' edge lines are drawn over them
+  function material(colour, opacity) {
     return new THREE.MeshStandardMaterial({
-      color: fixed ? COLOURS.fixed : COLOURS.moving, roughness: 0.6, metalness: 0.05,
-      transparent: opacity < 1, opacity: opacity,
+      color: colour, roughness: 0.6, metalness: 0.05, transparent: opacity < 1, opacity: opacity,
+      polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
     });
   }
 
@@ -106,13 +111,14 @@
     sun.position.set(3, -4, 8);
     scene.add(sun);
 
-    // Boxes and spheres, moving and fixed: one InstancedMesh each (one buffer update a frame)
+    // Boxes and spheres: one InstancedMesh per kind and colour (one buffer update a frame each)
     const groups = {};
     const singles = [];
     replay.bodies.forEach((body, i) => {
       if (body.kind === KIND.Box || body.kind === KIND.Sphere) {
-        const key = `${body.kind}-${body.fixed}`;
-        (groups[key] = groups[key] || { kind: body.kind, fixed: body.fixed, members: [] }).members.push(i);
+        const colour = colourOf(body, i);
+        const key = `${body.kind}-${body.fixed}-${colour}`;
+        (groups[key] = groups[key] || { kind: body.kind, fixed: body.fixed, colour: colour, members: [] }).members.push(i);
       } else {
         singles.push(i);
       }
@@ -121,11 +127,20 @@
     for (const key in groups) {
       const g = groups[key];
       const geometry = g.kind === KIND.Box ? new THREE.BoxBufferGeometry(2, 2, 2) : new THREE.SphereBufferGeometry(1, 24, 16);
-      const mesh = new THREE.InstancedMesh(geometry, material(g.fixed, g.fixed && g.kind === KIND.Box ? 0.35 : 1), g.members.length);
+      const mesh = new THREE.InstancedMesh(geometry, material(g.colour, g.fixed && g.kind === KIND.Box ? 0.35 : 1), g.members.length);
       mesh.frustumCulled = false;  // r111 culls an InstancedMesh by its geometry's bounds alone
       scene.add(mesh);
       instanced.push({ mesh: mesh, members: g.members, kind: g.kind });
     }
+    // Every box's 12 edges as dark lines, one LineSegments for all (EdgesGeometry of the unit box,
+    // posed a frame at a time), so that a stack reads as separate cubes
+    const boxes = replay.bodies.map((body, i) => i).filter((i) => replay.bodies[i].kind === KIND.Box);
+    const corners = new THREE.EdgesGeometry(new THREE.BoxBufferGeometry(2, 2, 2)).attributes.position.array;
+    const edgeGeometry = new THREE.BufferGeometry();
+    edgeGeometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(corners.length * boxes.length), 3));
+    const edges = new THREE.LineSegments(edgeGeometry, new THREE.LineBasicMaterial({ color: COLOURS.edge }));
+    edges.frustumCulled = false;
+    if (boxes.length > 0) scene.add(edges);
     const objects = [];  // [body index, Object3D] posed directly
     for (const i of singles) {
       const body = replay.bodies[i];
@@ -145,7 +160,7 @@
       } else if (body.kind === KIND.Capsule) {
         const r = body.size[0], h = body.size[1];
         object = new THREE.Group();
-        const m = material(body.fixed, 1);
+        const m = material(colourOf(body, i), 1);
         const core = new THREE.Mesh(new THREE.CylinderBufferGeometry(r, r, 2 * h, 24), m);
         core.rotation.x = Math.PI / 2;  // three's cylinder runs along y, the capsule's core along body z
         const top = new THREE.Mesh(new THREE.SphereBufferGeometry(r, 24, 12), m);
@@ -158,7 +173,7 @@
         geometry.setAttribute("position", new THREE.Float32BufferAttribute(body.vertices, 3));
         geometry.setIndex(body.triangles);
         geometry.computeVertexNormals();
-        object = new THREE.Mesh(geometry, material(body.fixed, 1));
+        object = new THREE.Mesh(geometry, material(colourOf(body, i), 1));
       }
       scene.add(object);
       objects.push([i, object]);
@@ -219,6 +234,17 @@
         });
         g.mesh.instanceMatrix.needsUpdate = true;
       }
+      const e = edgeGeometry.attributes.position.array, corner = new THREE.Vector3();
+      boxes.forEach((i, k) => {
+        const s = replay.bodies[i].size;
+        pose(frame, i);
+        for (let c = 0; c < corners.length; c += 3) {
+          corner.set(corners[c] * s[0], corners[c + 1] * s[1], corners[c + 2] * s[2]).applyQuaternion(quaternion).add(position);
+          const at = k * corners.length + c;
+          e[at] = corner.x; e[at + 1] = corner.y; e[at + 2] = corner.z;
+        }
+      });
+      edgeGeometry.attributes.position.needsUpdate = true;
       for (const [i, object] of objects) {
         pose(frame, i);
         object.position.copy(position);
@@ -285,31 +311,84 @@
   }
 
   // ---------------------------------------------------------------- energy plot
-  function drawEnergy(canvas, replays, index) {
-    const g = canvas.getContext("2d");
-    const w = canvas.width, h = canvas.height, pad = 4;
-    g.clearRect(0, 0, w, h);
+  // About `count` round steps (1, 2 or 5 times a power of ten) from lo to hi
+  function ticks(lo, hi, count) {
+    const raw = (hi - lo) / count, power = Math.pow(10, Math.floor(Math.log10(raw)));
+    const step = power * (raw / power < 1.5 ? 1 : raw / power < 3.5 ? 2 : raw / power < 7.5 ? 5 : 10);
+    const out = [];
+    for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) out.push(Math.abs(v) < 1e-12 * step ? 0 : v);
+    return out;
+  }
+  const tickText = (v, step) => (v === 0 ? "0" : Math.abs(step) >= 1e-2 && Math.abs(v) < 1e5 ? String(+v.toFixed(Math.max(0, -Math.floor(Math.log10(step))))) : v.toExponential(1));
+
+  // What the plot shows of the runs: kinetic, potential and total energy in J, or, when every
+  // run's total is flat (its range under 1% of its size), the total's relative drift
+  // (E - E0)/|E0| (E - E0 in J when E0 is 0), which shows what the joules would hide.
+  function energySeries(replays) {
+    const totals = replays.map((r) => r.frames.map((f) => f.kinetic + f.potential));
+    const flat = totals.every((e) => {
+      const finite = e.filter(isFinite);
+      if (finite.length === 0) return false;
+      const lo = Math.min(...finite), hi = Math.max(...finite);
+      return hi - lo <= 0.01 * Math.max(Math.abs(lo), Math.abs(hi));
+    });
     const series = [];
     replays.forEach((r, k) => {
-      const dash = k === 0 ? [] : [5, 4];
-      series.push({ v: r.frames.map((f) => f.kinetic), colour: "#d0453b", dash: dash });
-      series.push({ v: r.frames.map((f) => f.potential), colour: "#3b7dd8", dash: dash });
-      series.push({ v: r.frames.map((f) => f.kinetic + f.potential), colour: "#222", dash: dash });
+      const dash = k === 0 ? [] : [5, 4], t = r.frames.map((f) => f.time);
+      if (flat) {
+        const e0 = totals[k][0];
+        series.push({ t: t, v: totals[k].map((e) => (e0 !== 0 ? (e - e0) / Math.abs(e0) : e - e0)), colour: "#222", dash: dash });
+      } else {
+        series.push({ t: t, v: r.frames.map((f) => f.kinetic), colour: "#d0453b", dash: dash });
+        series.push({ t: t, v: r.frames.map((f) => f.potential), colour: "#3b7dd8", dash: dash });
+        series.push({ t: t, v: totals[k], colour: "#222", dash: dash });
+      }
     });
-    let lo = Infinity, hi = -Infinity;
-    for (const s of series) for (const v of s.v) if (isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
-    if (!(hi > lo)) { hi = lo + 1; lo -= 1; }
-    const n = replays[0].frames.length;
-    const x = (i) => pad + (w - 2 * pad) * (n > 1 ? i / (n - 1) : 0);
-    const y = (v) => h - pad - (h - 2 * pad) * (v - lo) / (hi - lo);
-    for (const s of series) {
+    const e0 = totals[0][0];
+    const axis = !flat ? "energy [J]" : e0 !== 0 ? "(E-E0)/|E0|" : "E-E0 [J]";
+    const legend = !flat
+      ? '<span style="color:#d0453b">kinetic</span>, <span style="color:#3b7dd8">potential</span> and total (black) [J]'
+      : `the total is flat (E0 = ${e0.toPrecision(4)} J), so the plot shows its ${e0 !== 0 ? "relative drift (E - E0)/|E0|" : "drift E - E0 [J]"}`;
+    return { series: series, flat: flat, axis: axis, legend: legend };
+  }
+
+  function drawEnergy(canvas, plot, time) {
+    const g = canvas.getContext("2d");
+    const w = canvas.width, h = canvas.height, left = 62, right = 8, top = 8, bottom = 28;
+    g.clearRect(0, 0, w, h);
+    let lo = Infinity, hi = -Infinity, t0 = Infinity, t1 = -Infinity;
+    for (const s of plot.series) {
+      for (const v of s.v) if (isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+      t0 = Math.min(t0, s.t[0]); t1 = Math.max(t1, s.t[s.t.length - 1]);
+    }
+    if (!(hi > lo)) { const pad = Math.max(Math.abs(lo) * 0.1, plot.flat ? 1e-9 : 1); hi = lo + pad; lo -= pad; }
+    if (!(t1 > t0)) t1 = t0 + 1;
+    const x = (t) => left + (w - left - right) * (t - t0) / (t1 - t0);
+    const y = (v) => h - bottom - (h - top - bottom) * (v - lo) / (hi - lo);
+    // Axes with their ticks and labels
+    g.font = "11px sans-serif"; g.fillStyle = "#444"; g.strokeStyle = "#999"; g.lineWidth = 1; g.setLineDash([]);
+    g.beginPath(); g.moveTo(left, top); g.lineTo(left, h - bottom); g.lineTo(w - right, h - bottom); g.stroke();
+    const yTicks = ticks(lo, hi, 4), tTicks = ticks(t0, t1, 8);
+    g.textAlign = "right"; g.textBaseline = "middle";
+    for (const v of yTicks) {
+      g.strokeStyle = "#eee"; g.beginPath(); g.moveTo(left + 1, y(v)); g.lineTo(w - right, y(v)); g.stroke();
+      g.fillText(tickText(v, yTicks.length > 1 ? yTicks[1] - yTicks[0] : v), left - 4, y(v));
+    }
+    g.textAlign = "center"; g.textBaseline = "top";
+    for (const t of tTicks) {
+      g.strokeStyle = "#999"; g.beginPath(); g.moveTo(x(t), h - bottom); g.lineTo(x(t), h - bottom + 3); g.stroke();
+      g.fillText(tickText(t, tTicks.length > 1 ? tTicks[1] - tTicks[0] : 1), x(t), h - bottom + 4);
+    }
+    g.fillText("t [s]", w - right - 14, h - 12);
+    g.save(); g.font = "10px sans-serif"; g.translate(10, top + (h - top - bottom) / 2); g.rotate(-Math.PI / 2); g.textBaseline = "middle";
+    g.fillText(plot.axis, 0, 0); g.restore();
+    for (const s of plot.series) {
       g.strokeStyle = s.colour; g.setLineDash(s.dash); g.lineWidth = 1.5; g.beginPath();
-      s.v.forEach((v, i) => (i ? g.lineTo(x(i), y(v)) : g.moveTo(x(i), y(v))));
+      s.v.forEach((v, i) => (i ? g.lineTo(x(s.t[i]), y(v)) : g.moveTo(x(s.t[i]), y(v))));
       g.stroke();
     }
     g.setLineDash([]); g.strokeStyle = "#0a0"; g.lineWidth = 2; g.beginPath();
-    g.moveTo(x(index), 0); g.lineTo(x(index), h); g.stroke();
-    $("energy-range").textContent = `${lo.toPrecision(4)} J to ${hi.toPrecision(4)} J`;
+    g.moveTo(x(time), top); g.lineTo(x(time), h - bottom); g.stroke();
   }
 
   // ---------------------------------------------------------------- the page
@@ -322,7 +401,18 @@
     $("settings").textContent = replays.map((r, k) => (replays.length > 1 ? labels[k] + ": " : "") + (r.settings || "(no settings recorded)")).join("\n");
     $("legend-reference").hidden = replays.length < 2;
     if (data.note) { $("note").textContent = data.note; $("note").hidden = false; }
-    const frames = Math.min(...replays.map((r) => r.frames.length));
+    // The page steps through the first replay's frames; another shows its last frame at or before
+    // the same time (a recorded reference may hold fewer frames: ./physlab publish thins it)
+    const frames = first.frames.length;
+    const match = replays.map((r) => {
+      let j = 0;
+      return first.frames.map((f) => {
+        while (j + 1 < r.frames.length && r.frames[j + 1].time <= f.time + 1e-6) ++j;
+        return j;
+      });
+    });
+    const plot = energySeries(replays);
+    $("energy-legend").innerHTML = plot.legend;
     $("frame-count").textContent = String(frames);
     $("bodies").textContent = `${first.bodies.length} bodies, ${first.particles} particles`;
     if (data.diff) {
@@ -371,20 +461,20 @@
     function show(i) {
       index = Math.max(0, Math.min(frames - 1, i));
       const contacts = $("contacts").checked;
-      worlds.forEach((world, k) => world.update(replays[k].frames[index], contacts));
+      worlds.forEach((world, k) => world.update(replays[k].frames[match[k][index]], contacts));
       slider.value = String(index);
       const f = first.frames[index];
       $("frame-index").textContent = String(index + 1);
       $("time").textContent = f.time.toFixed(3);
       const deepest = contactsOf(first, f).reduce((d, c) => Math.max(d, c.depth), 0);
       $("stats").textContent = replays.map((r, k) => {
-        const g = r.frames[index];
-        const from = g.contactsFrom === null || g.contactsFrom === index ? "" : ` of frame ${g.contactsFrom + 1} (contacts recorded on some frames only)`;
+        const at = match[k][index], g = r.frames[at];
+        const from = g.contactsFrom === null || g.contactsFrom === at ? "" : ` of t = ${r.frames[g.contactsFrom].time.toFixed(3)} s (contacts recorded on some frames only)`;
         return (replays.length > 1 ? labels[k] + ": " : "") +
           `KE ${g.kinetic.toPrecision(5)} J, PE ${g.potential.toPrecision(5)} J, ${contactsOf(r, g).length} contacts${from}` +
           `${k === 0 ? ` (deepest ${(1000 * deepest).toFixed(2)} mm)` : ""}, ${g.iterations} iterations`;
       }).join("; ");
-      drawEnergy($("energy"), replays, index);
+      drawEnergy($("energy"), plot, f.time);
       render();
     }
 

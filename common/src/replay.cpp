@@ -276,6 +276,44 @@ Replay decodeReplay(std::string_view bytes, std::string_view what) {
   return replay;
 }
 
+Replay thinReplay(const Replay& replay, std::size_t max_bytes) {
+  const std::size_t F = replay.frames.size(), B = replay.bodies.size(), P = replay.particle_count;
+  std::size_t fixed = replayHeaderBytes(replay) + 4 * replay.springs.size();
+  for (const ReplayBody& body : replay.bodies) fixed += replayBodyBytes(body);
+  const auto kept = [F](std::size_t f, std::size_t stride) { return f % stride == 0 || f + 1 == F; };
+  // Bytes with every `stride`-th frame and the contacts of every `contacts_stride`-th kept one
+  const auto bytes = [&](std::size_t stride, std::size_t contacts_stride) {
+    std::size_t total = fixed, k = 0;
+    for (std::size_t f = 0; f < F; ++f) {
+      if (!kept(f, stride)) continue;
+      total += replayFrameBytes(B, P, k++ % contacts_stride == 0 ? replay.frames[f].contacts.size() : 0);
+    }
+    return total;
+  };
+  const auto thinned = [&](std::size_t stride, std::size_t contacts_stride) {
+    Replay out = replay;
+    out.frames.clear();
+    std::size_t k = 0;
+    for (std::size_t f = 0; f < F; ++f) {
+      if (!kept(f, stride)) continue;
+      ReplayFrame& frame = out.frames.emplace_back(replay.frames[f]);
+      if (k++ % contacts_stride != 0) {
+        frame.contacts.clear();
+        frame.contacts_recorded = false;
+      }
+    }
+    return out;
+  };
+  constexpr std::size_t kMaxContactsStride = 10;
+  for (std::size_t stride = 1; stride <= std::max<std::size_t>(F, 1); ++stride) {
+    for (std::size_t contacts_stride = 1; contacts_stride <= kMaxContactsStride; ++contacts_stride) {
+      if (bytes(stride, contacts_stride) > max_bytes) continue;
+      return stride == 1 && contacts_stride == 1 ? replay : thinned(stride, contacts_stride);
+    }
+  }
+  return thinned(std::max<std::size_t>(F, 1), std::max<std::size_t>(F, 1));
+}
+
 void writeReplay(const Replay& replay, const std::string& path) {
   const std::string bytes = encodeReplay(replay);
   std::ofstream file(path, std::ios::binary);

@@ -1,9 +1,12 @@
 // The main of the per-lab view programs (physlab/view.hpp).
 #include "physlab/view.hpp"
 
+#include <charconv>
+#include <cstddef>
 #include <exception>
 #include <iostream>
 #include <string_view>
+#include <system_error>
 
 #include "physlab/error.hpp"
 
@@ -14,10 +17,17 @@ void listScenes(std::ostream& out, const std::vector<ViewScene>& scenes) {
   for (const ViewScene& scene : scenes) out << "  " << scene.name << "  " << scene.what << "\n";
 }
 
+// A positive whole number of bytes into `bytes`; false for anything else.
+bool parseBytes(std::string_view text, std::size_t& bytes) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), bytes);
+  return error == std::errc() && end == text.data() + text.size() && bytes > 0;
+}
+
 }  // namespace
 
 int runView(int argc, char** argv, const std::vector<ViewScene>& scenes) {
   std::string name = scenes.empty() ? "" : scenes.front().name, out;
+  std::size_t max_bytes = 0;
   for (int k = 1; k < argc; ++k) {
     const std::string_view arg = argv[k];
     if (arg == "--list") {
@@ -26,8 +36,10 @@ int runView(int argc, char** argv, const std::vector<ViewScene>& scenes) {
     }
     if ((arg == "--scene" || arg == "--out") && k + 1 < argc) {
       (arg == "--scene" ? name : out) = argv[++k];
+    } else if (arg == "--max-bytes" && k + 1 < argc && parseBytes(argv[k + 1], max_bytes)) {
+      ++k;
     } else {
-      std::cerr << "usage: " << argv[0] << " [--scene NAME] [--out FILE] [--list]\n";
+      std::cerr << "usage: " << argv[0] << " [--scene NAME] [--out FILE] [--max-bytes N] [--list]\n";
       return 2;
     }
   }
@@ -42,7 +54,8 @@ int runView(int argc, char** argv, const std::vector<ViewScene>& scenes) {
   }
   if (out.empty()) out = scene->name + ".replay";
   try {
-    writeReplay(scene->record(), out);
+    const Replay replay = scene->record();
+    writeReplay(max_bytes > 0 ? thinReplay(replay, max_bytes) : replay, out);
   } catch (const NotImplemented& e) {
     std::cerr << e.what() << "\n";
     return 3;

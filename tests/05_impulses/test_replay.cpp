@@ -119,6 +119,31 @@ TEST_CASE("replay: the file's size is header + shapes + springs + frames, exactl
   CHECK(encodeReplay(replay).size() == expected);
 }
 
+TEST_CASE("replay: thinReplay keeps the first and last frames and fits the bytes asked for", "[common]") {
+  Replay replay = handMadeReplay();
+  const ReplayFrame last = replay.frames.back();
+  replay.frames.insert(replay.frames.end() - 1, 4, replay.frames.front());  // 6 frames, contacts on the last
+  for (std::size_t f = 0; f < replay.frames.size(); ++f) replay.frames[f].time = 0.25f * static_cast<float>(f);
+  const std::size_t whole = encodeReplay(replay).size();
+  CHECK(encodeReplay(thinReplay(replay, whole)) == encodeReplay(replay));
+  // 40 bytes short: the last frame's contact goes first (every second kept frame's contacts)
+  const Replay no_contact = thinReplay(replay, whole - 40);
+  REQUIRE(no_contact.frames.size() == 6);
+  CHECK(no_contact.frames.back().contacts.empty());
+  CHECK_FALSE(no_contact.frames.back().contacts_recorded);
+  // A frame short: every second frame (0, 2, 4) and the last, times kept
+  const Replay halved = thinReplay(replay, whole - 132);
+  REQUIRE(halved.frames.size() == 4);
+  CHECK(halved.frames[1].time == 0.5f);
+  CHECK(halved.frames.back().time == 1.25f);
+  CHECK(halved.frames.back().contacts.size() == last.contacts.size());
+  CHECK(encodeReplay(halved).size() <= whole - 132);
+  // Nothing fits: the first and last frames, the last's contacts left out
+  const Replay smallest = thinReplay(replay, 0);
+  REQUIRE(smallest.frames.size() == 2);
+  CHECK(smallest.frames.back().contacts.empty());
+}
+
 TEST_CASE("replay: a truncated file is refused naming the byte where it ends", "[common]") {
   const std::string bytes = encodeReplay(handMadeReplay());
   REQUIRE(replayRefusal(bytes).empty());

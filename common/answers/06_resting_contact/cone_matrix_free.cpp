@@ -14,6 +14,8 @@
 
 namespace physlab {
 
+const char* LcpContactSolver::matrixFreeSource() { return "framework answer"; }
+
 // solveLcpPgsCone() on the rows (n, t, o) of every resting point, with w = b + J dv kept through
 // per-body velocity changes instead of A f: a row's update touches only its two bodies.
 int LcpContactSolver::solveConeMatrixFree(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,

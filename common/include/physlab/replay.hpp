@@ -99,6 +99,13 @@ std::string encodeReplay(const Replay& replay);
 /// the bytes end before the layout does ("truncated at byte N: frame 3's poses (56 bytes from byte M) is missing"),
 /// or bytes are left after the last frame.
 Replay decodeReplay(std::string_view bytes, std::string_view what);
+/// A copy of `replay` whose file takes at most `max_bytes` (the reference's recorded runs that a
+/// student copy ships, ./physlab publish): with every s-th frame (the first, then one in s, and the
+/// last) and the contacts of every c-th kept frame (the others' left out, contacts_recorded false),
+/// s the smallest stride, then c the smallest up to 10, that fit. A replay that fits is returned
+/// whole; one whose first and last frames alone do not fit keeps those two. Frames keep their
+/// times, so a viewer matches them with a full run's by time.
+Replay thinReplay(const Replay& replay, std::size_t max_bytes);
 /// encodeReplay() into the file `path` (InvalidInput when it cannot be written).
 void writeReplay(const Replay& replay, const std::string& path);
 /// decodeReplay() of the file `path` (InvalidInput when it cannot be read).

@@ -213,6 +213,10 @@ class LcpContactSolver : public RestingContactSolver {
   // Lab 6 is released in a student's copy its stand-in, common/unreleased/06_resting_contact/
   int solveConeMatrixFree(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
                           const std::vector<int>& resting, double h);
+  // Whose code solveConeMatrixFree() is, for describe(): the framework answer's ("framework
+  // answer", no student code: the viewer labels such a run so) or the stand-in's (built on the
+  // student's solveLcpPgsCone()); each of the two files defines it.
+  static const char* matrixFreeSource();
   // The relative normal velocity of contact c's points now [m/s].
   static double normalVelocity(const std::vector<ContactBody>& bodies, const Contact& c);
   // A colliding point's normal bias aims at its bounce when that is faster than the push apart.

@@ -19,8 +19,10 @@ struct ViewScene {
   std::function<Replay()> record;  ///< runs the scene and returns its replay
 };
 
-/// The main of a view program: `view_NN [--scene NAME] [--out FILE] [--list]`. Records the scene
-/// (the first when none is named) into FILE (default NAME.replay) and prints its path. Exit codes:
+/// The main of a view program: `view_NN [--scene NAME] [--out FILE] [--max-bytes N] [--list]`.
+/// Records the scene (the first when none is named) into FILE (default NAME.replay) and prints its
+/// path; with --max-bytes, thinReplay() to N bytes first (the recorded reference runs a student
+/// copy ships, ./physlab publish). Exit codes:
 /// 0 written; 2 an unknown scene or option (the known scenes are listed); 3 a function the scene
 /// runs is not written yet (physlab::NotImplemented, its message on stderr, no file written);
 /// 1 any other error, its message on stderr.

@@ -385,8 +385,10 @@ class World {
   const std::vector<BodyDescription>& bodies() const { return bodies_; }  ///< the descriptions
   const std::vector<BodyState>& states() const { return states_; }        ///< the states now
   const Settings& settings() const { return settings_; }                  ///< the settings
-  /// Settings::toString(), and with a resting-contact solver which points it answers ("every
-  /// point (bounces too): ..." or "colliding points: impulses, resting: ...") and its description.
+  /// Settings::toString(); with a resting-contact solver only the settings that act (gravity, broad
+  /// phase, continuous, shock propagation, the position correction when on, the impulse method's
+  /// when it answers the colliding points), which points the solver answers ("every point (bounces
+  /// too): ..." or "colliding points: impulses, resting: ...") and its description.
   std::string describe() const;
   /// Replaces body i's state (validated).
   void setState(int i, const BodyState& state);

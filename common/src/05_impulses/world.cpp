@@ -201,10 +201,27 @@ void World::setState(int i, const BodyState& state) {
 
 std::string World::describe() const {
   if (!resting_solver_) return settings_.toString();
-  // Name who answers what: with a bouncing solver the impulse method is not used at all
-  return settings_.toString() +
-         (resting_solver_->bounces() ? " every point (bounces too): " : " colliding points: impulses, resting: ") +
-         resting_solver_->describe();
+  // Only the settings that act: the World's own, the impulse method's only when it answers the
+  // colliding points (a bouncing solver answers every point), the position correction's only when
+  // it is on; then the resting-contact solver's
+  const Settings& s = settings_;
+  std::ostringstream out;
+  out << "gravity=(" << s.gravity.x() << ", " << s.gravity.y() << ", " << s.gravity.z() << ")"
+      << " broad_phase=" << (s.use_broad_phase ? "incremental tree" : "all pairs")
+      << " continuous=" << (s.continuous ? "on" : "off")
+      << " shock_propagation=" << (s.shock_propagation ? "on" : "off");
+  if (s.position_correction > 0.0) {
+    out << " position_correction=" << s.position_correction << " slop=" << s.slop
+        << " correction_sweeps=" << s.correction_sweeps;
+  }
+  if (resting_solver_->bounces()) {
+    out << " every point (bounces too): ";
+  } else {
+    out << " method=" << responseMethodName(s.method) << " iterations=" << s.iterations
+        << " restitution_threshold=" << s.restitution_threshold << " warm_start=" << (s.warm_start ? "on" : "off")
+        << " colliding points: impulses, resting: ";
+  }
+  return out.str() + resting_solver_->describe();
 }
 
 Vec3 World::velocity(int i) const {

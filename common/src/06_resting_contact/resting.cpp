@@ -81,7 +81,8 @@ LcpContactSolver::LcpContactSolver(RestingSettings settings) : settings_(setting
 
 std::string LcpContactSolver::describe() const {
   const bool frictionless = settings_.method == LcpMethod::Pivoting || settings_.formulation == Formulation::Acceleration;
-  return settings_.toString() + (frictionless ? " (friction ignored)" : "");
+  return settings_.toString() + (settings_.matrix_free ? std::string(" (") + matrixFreeSource() + ")" : "") +
+         (frictionless ? " (friction ignored)" : "");
 }
 
 bool LcpContactSolver::bounces() const { return settings_.formulation == Formulation::Velocity; }

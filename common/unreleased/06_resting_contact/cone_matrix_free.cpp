@@ -45,6 +45,8 @@ void applyChange(std::vector<ContactBody>& bodies, const PointBlock& point, cons
 
 }  // namespace
 
+const char* LcpContactSolver::matrixFreeSource() { return "built on your solveLcpPgsCone"; }
+
 int LcpContactSolver::solveConeMatrixFree(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
                                           const std::vector<int>& resting, double h) {
   // Each point's block of A and its b at the velocities before any impulse (the dense cone path's
