@@ -80,8 +80,10 @@ function(physlab_add_common)
   file(GLOB sources CONFIGURE_DEPENDS "${PHYSLAB_ROOT}/common/src/*.cpp")
   add_library(physlab_common STATIC ${sources})
   target_include_directories(physlab_common PUBLIC "${PHYSLAB_ROOT}/common/include")
-  target_include_directories(physlab_common SYSTEM PRIVATE "${GNUPLOT_IOSTREAM_INCLUDE_DIR}")
-  target_link_libraries(physlab_common PUBLIC Eigen3::Eigen PRIVATE Boost::iostreams Boost::filesystem)
+  # Nothing but Eigen and the standard library: the charts (plot.cpp) pipe their scripts to
+  # gnuplot through the C library, so whatever links the framework (every test executable, the
+  # grader's links) builds with libc++ as well as libstdc++.
+  target_link_libraries(physlab_common PUBLIC Eigen3::Eigen)
   physlab_cxx(physlab_common)
 
   # One precompiled header (Catch2 + Eigen) shared by every test object library.
@@ -133,15 +135,9 @@ function(physlab_add_common)
                        DEPENDS physlab_worker_filter COMMENT "The grading worker's seccomp filter")
     add_custom_target(physlab_worker_bpf ALL DEPENDS "${CMAKE_BINARY_DIR}/grading/worker.bpf")
     set(worker_filter "${CMAKE_BINARY_DIR}/grading/worker.bpf")
-    # A worker is linked statically (its sandbox holds no file but itself): the static Boost
-    # that the framework's plotting code needs, and nothing else beyond the C++ runtime.
-    find_library(PHYSLAB_BOOST_IOSTREAMS_STATIC libboost_iostreams.a)
-    find_library(PHYSLAB_BOOST_FILESYSTEM_STATIC libboost_filesystem.a)
-    if(NOT PHYSLAB_BOOST_IOSTREAMS_STATIC OR NOT PHYSLAB_BOOST_FILESYSTEM_STATIC)
-      physlab_missing("Boost's static libraries (a grading worker is linked statically)"
-                      "libboost-iostreams-dev libboost-filesystem-dev")
-    endif()
-    set(PHYSLAB_WORKER_LIBRARIES "${PHYSLAB_BOOST_IOSTREAMS_STATIC}" "${PHYSLAB_BOOST_FILESYSTEM_STATIC}" -pthread
+    # A worker is linked statically (its sandbox holds no file but itself): nothing beyond the
+    # C++ runtime.
+    set(PHYSLAB_WORKER_LIBRARIES -pthread
         CACHE INTERNAL "what a grading worker links besides the labs and the framework")
   endif()
   # The grader's notary forks in .preinit_array: ELF executables only. Elsewhere, or on request
@@ -168,7 +164,7 @@ function(physlab_add_common)
   \"main\": [\"$<JOIN:$<TARGET_OBJECTS:physlab_test_runner>;$<TARGET_OBJECTS:physlab_test_support>,\",\">\"],
   \"common\": \"$<TARGET_FILE:physlab_common>\",
   \"worker_libraries\": [\"$<JOIN:${PHYSLAB_WORKER_LIBRARIES},\",\">\"],
-  \"libraries\": [\"$<TARGET_FILE:Boost::iostreams>\", \"$<TARGET_FILE:Boost::filesystem>\", \"-pthread\"]
+  \"libraries\": [\"-pthread\"]
 }
 ")
 endfunction()

@@ -16,14 +16,6 @@ if(NOT Catch2_FOUND)
 endif()
 include(Catch)
 
-find_path(GNUPLOT_IOSTREAM_INCLUDE_DIR gnuplot-iostream.h)
-if(NOT GNUPLOT_IOSTREAM_INCLUDE_DIR)
-  physlab_missing("gnuplot-iostream" libgnuplot-iostream-dev)
-endif()
-find_package(Boost 1.74 QUIET COMPONENTS iostreams filesystem)
-if(NOT Boost_IOSTREAMS_FOUND OR NOT Boost_FILESYSTEM_FOUND)
-  physlab_missing("Boost.Iostreams and Boost.Filesystem (for gnuplot-iostream)" "libboost-iostreams-dev libboost-filesystem-dev")
-endif()
 find_program(GNUPLOT_EXECUTABLE gnuplot)
 if(NOT GNUPLOT_EXECUTABLE)
   physlab_missing("gnuplot (to draw the charts)" gnuplot-nox)
@@ -31,11 +23,29 @@ endif()
 
 find_package(Threads REQUIRED)
 
+# Whether the peers that are C++ libraries (Bullet, FCL) can be linked: a Linux distribution
+# builds them for libstdc++, so a libc++ build of the benchmarks leaves them out (macOS's are
+# built for libc++, its only standard library).
+include(CheckCXXSourceCompiles)
+set(CMAKE_REQUIRED_QUIET ON)
+check_cxx_source_compiles("#include <ciso646>
+#ifndef _LIBCPP_VERSION
+#error not libc++
+#endif
+int main() { return 0; }" PHYSLAB_LIBCXX)
+unset(CMAKE_REQUIRED_QUIET)
+set(PHYSLAB_CXX_PEERS ON)
+if(PHYSLAB_LIBCXX AND CMAKE_SYSTEM_NAME STREQUAL "Linux")
+  set(PHYSLAB_CXX_PEERS OFF)
+  message(STATUS "libc++: the benchmarks compare with no C++ peer (Bullet, FCL: built for libstdc++)")
+endif()
+
 # Optional peer for benchmarks: Bullet's double-precision build (never needed to build or test).
-# Links it into `target` with PHYSLAB_HAVE_BULLET defined when pkg-config finds it.
+# Links it into `target` with PHYSLAB_HAVE_BULLET defined when pkg-config finds it (and the
+# standard library is the one it was built for: PHYSLAB_CXX_PEERS).
 function(physlab_link_bullet target)
   find_package(PkgConfig QUIET)
-  if(NOT PKG_CONFIG_FOUND)
+  if(NOT PKG_CONFIG_FOUND OR NOT PHYSLAB_CXX_PEERS)
     return()
   endif()
   if(NOT TARGET PkgConfig::PHYSLAB_BULLET)

@@ -108,7 +108,6 @@ constexpr double kStep = 1.0 / 60.0;
 constexpr double kStands = 0.05;    // the bar: no cube moves more than 5 cm [m]
 constexpr double kPitch = 0.22;     // cubePyramid's spacing: edge 0.2 m plus the 0.02 m gap [m]
 constexpr int kIterations = 20;     // PGS sweeps (ours, ODE QuickStep) and Bullet's iterations
-constexpr int kMaxContactsPerPair = 4;
 constexpr std::size_t kSoft = 2;    // the engines' index of our soft step
 constexpr std::size_t kDense = 3;   // the engines' index of our dense PGS
 
@@ -196,6 +195,8 @@ class BulletSimulation : public Simulation {
 // ----- ODE -------------------------------------------------------------------------------------
 
 #ifdef PHYSLAB_HAVE_ODE
+constexpr int kMaxContactsPerPair = 4;  // contact points dCollide reports per pair of geoms
+
 // ODE reports "LCP internal error" and the like through its message handler (and carries on):
 // count them per window instead of letting them flood the output.
 int ode_messages = 0;

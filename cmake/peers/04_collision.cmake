@@ -1,9 +1,10 @@
 # Optional peers for bench_04_collision: Bullet's btDbvtBroadphase (and box-box detector) and
 # FCL's dynamic AABB tree manager. Each is linked, with PHYSLAB_HAVE_BULLET / PHYSLAB_HAVE_FCL
-# defined, only when pkg-config finds it.
+# defined, only when pkg-config finds it (and the standard library is the one it was built for:
+# PHYSLAB_CXX_PEERS).
 physlab_link_bullet(${PHYSLAB_BENCH_TARGET})
 find_package(PkgConfig QUIET)
-if(PKG_CONFIG_FOUND)
+if(PKG_CONFIG_FOUND AND PHYSLAB_CXX_PEERS)
   if(NOT TARGET PkgConfig::PHYSLAB_FCL)
     pkg_check_modules(PHYSLAB_FCL QUIET IMPORTED_TARGET GLOBAL fcl)
     if(TARGET PkgConfig::PHYSLAB_FCL)

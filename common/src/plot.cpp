@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
-
-#include <gnuplot-iostream.h>
 
 #include "physlab/error.hpp"
 
@@ -31,6 +32,33 @@ std::string escapedForDoubleQuotes(const std::string& text) {
     out += c;
   }
   return out;
+}
+
+// A gnuplot script, built in memory: numbers in full precision.
+std::ostringstream gnuplotScript() {
+  std::ostringstream script;
+  script << std::scientific << std::setprecision(18);
+  return script;
+}
+
+// Runs gnuplot on `script` and waits for it to end, so that the file it writes (`what`) is whole.
+// A pipe of the C library, nothing else: the plotting code needs no library beyond the standard
+// one, so every executable that links it (Lab 5's tests among them) builds with any standard
+// library, libc++ as well as libstdc++.
+void runGnuplot(const std::string& script, const std::string& what) {
+#ifdef _WIN32
+  std::FILE* pipe = ::_popen("gnuplot", "w");
+#else
+  std::FILE* pipe = ::popen("gnuplot", "w");
+#endif
+  if (pipe == nullptr) throw std::runtime_error("cannot start gnuplot to draw " + what);
+  std::fwrite(script.data(), 1, script.size(), pipe);
+#ifdef _WIN32
+  const int status = ::_pclose(pipe);
+#else
+  const int status = ::pclose(pipe);
+#endif
+  if (status != 0) std::cerr << "gnuplot failed (status " << status << ") drawing " << what << "\n";
 }
 
 void makeParentFolder(const std::string& path) {
@@ -180,7 +208,7 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
       {".svg", "svg size 960,600 enhanced font 'Sans,16' background '#ffffff'"}};
   for (const auto& [extension, terminal] : terminals) {
     const std::string path = stem + extension;
-    Gnuplot gp("gnuplot");
+    std::ostringstream gp = gnuplotScript();
     gp << "set terminal " << terminal << "\n"
        << "set output " << quoted(path) << "\n"
        << "set title " << quoted(title_) << "\n"
@@ -248,6 +276,7 @@ std::vector<std::string> Chart::save(const std::string& stem) const {
       gp << "e\n";
     }
     gp << "unset output\n";
+    runGnuplot(gp.str(), path);
     paths.push_back(path);
   }
   return paths;
@@ -270,7 +299,7 @@ void Animation::addFrame(std::vector<Layer> layers, const std::string& caption) 
 
 std::string Animation::save(const std::string& path, int delay_cs) const {
   makeParentFolder(path);
-  Gnuplot gp("gnuplot");
+  std::ostringstream gp = gnuplotScript();
   // The title and the caption on lines of their own, in a top margin kept for them: one line
   // with both ran past the 640-pixel frame
   gp << "set terminal gif animate delay " << delay_cs << " size 640,640 font 'Sans,12' optimize\n"
@@ -313,6 +342,7 @@ std::string Animation::save(const std::string& path, int delay_cs) const {
     }
   }
   gp << "unset output\n";
+  runGnuplot(gp.str(), path);
   return path;
 }
 

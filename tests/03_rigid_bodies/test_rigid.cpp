@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "physlab/rigid.hpp"
+#include "physlab/special_functions.hpp"
 #include "support.hpp"
 
 using namespace physlab;
@@ -36,7 +37,7 @@ double analyticFlipTime(const Vec3& I, const Vec3& w) {
   const double twoE = w.dot(I.cwiseProduct(w)), L2 = I.cwiseProduct(w).squaredNorm();
   const double lambda = std::sqrt((I[1] - I[0]) * (twoE * I[2] - L2) / (I[0] * I[1] * I[2]));
   const double k = std::sqrt((I[2] - I[1]) * (L2 - twoE * I[0]) / ((I[1] - I[0]) * (twoE * I[2] - L2)));
-  return std::comp_ellint_1(k) / lambda;
+  return completeEllipticK(k) / lambda;
 }
 
 }  // namespace
