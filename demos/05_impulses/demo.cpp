@@ -82,15 +82,15 @@ void penaltyStiffnessChart(const DemoOptions& options, std::vector<std::string>&
   const double h = 1e-3, duration = options.quick ? 0.6 : 1.5, drop = 0.5;
   const double k_limit = 4.0 / (h * h);  // 4 m / h^2 with m = 1 kg
   Chart chart("Ball (1 kg) on the ground, h = 1 ms: penetration against penalty stiffness", "penalty stiffness k [N/m]",
-              "depth [m]: resting ball's middle, dropped ball's largest");
+              "depth [m]");
   chart.logX().logY().mark({k_limit, "k = 4 m / h^2"});
   const double decade_step = options.quick ? 1.0 : 0.25;
   std::vector<double> ks;
   for (double e = 3.0; e <= 8.0 + 1e-9; e += decade_step) ks.push_back(std::pow(10.0, e));
 
   bool drawn = attempt("penalty against stiffness", [&] {
-    Series resting{"penalty, resting", {}, {}, "linespoints pt 7" + colourOf(ResponseMethod::Penalty)};
-    Series dropped{"penalty, dropped from 0.5 m", {}, {}, "linespoints pt 5 dt 2" + colourOf(ResponseMethod::Penalty)};
+    Series resting{"penalty, resting (middle of its swing)", {}, {}, "linespoints pt 7" + colourOf(ResponseMethod::Penalty)};
+    Series dropped{"penalty, dropped from 0.5 m (deepest)", {}, {}, "linespoints pt 5 dt 2" + colourOf(ResponseMethod::Penalty)};
     Series unstable{"penalty, unstable (E > 2 E_0)", {}, {}, "points pt 2 ps 2.5 lc rgb 'black'"};
     double last_stable_k = kNaN, first_unstable_k = kNaN;
     for (const double k : ks) {
@@ -673,8 +673,8 @@ void timewarpTimesChart(const DemoOptions& options, std::vector<std::string>& wr
   const int background = options.quick ? 20 : 100;
   const int bodies = 1 + kRow + background;
   Chart chart("Ball through a row of 5 (+" + std::to_string(background) +
-                  " drifting spheres): impact-time error against work",
-              "body states advanced", "largest impact-time error [s] (round-off drawn at 1e-16)");
+                  " drifting spheres): impact-time error (round-off drawn at 1e-16) against work",
+              "body states advanced", "largest impact-time error [s]");
   chart.logX().logY();
   bool drawn = false;
   drawn |= attempt("timewarp impact times, fixed step", [&] {
@@ -728,7 +728,7 @@ void timewarpCostChart(const DemoOptions& options, std::vector<std::string>& wri
   const double duration = 1.0, h = kLargestStep;
   const std::vector<int> backgrounds = options.quick ? std::vector<int>{10, 30, 100} : std::vector<int>{10, 30, 100, 300, 1000};
   Chart chart("Ball through a row of 5 among N drifting spheres, 1 s: work of each method", "bodies N",
-              "count (solid: pair checks, dashed: body states advanced)");
+              "count");
   chart.logX().logY();
   bool drawn = false;
   drawn |= attempt("timewarp cost, synchronous sub-steps", [&] {

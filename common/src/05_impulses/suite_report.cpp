@@ -103,8 +103,8 @@ SuiteReport contactSuiteReport(const std::vector<SuiteColumn>& columns, const st
   table.print(out);
   for (const std::string& note : notes) out << "  failed: " << note << "\n";
 
-  Chart chart("Textbook contact scenes, h = 1/60 s: below the dotted line passes",
-              "", "|value - expected| / tolerance (exact: 10^{-3})");
+  Chart chart("Textbook contact scenes, h = 1/60 s: below the dotted line passes (exact: 10^{-3})",
+              "", "|value - expected| / tolerance");
   chart.logY().yRange(0.5 * kScoreFloor, 2.0 * kScoreCeiling).xTics(tics);
   for (Series& column : series) chart.add(std::move(column));
   chart.add({"passes below 1", {0.0, static_cast<double>(tics.size() + 1)}, {1.0, 1.0}, "lines dt 3 lc rgb '#000000'"});
@@ -128,8 +128,8 @@ StackDrift stackDriftChart(const std::vector<SuiteColumn>& columns, const std::s
   const double duration = stack->duration();
   const std::size_t top = start.states.size() - 1;  // the stack's cubes rise in the Scene's order
   const int steps = static_cast<int>(std::lround(duration / kSuiteStep));
-  Chart chart("A stack of 10 cubes, h = 1/60 s: how far its top moves sideways", "time [s]",
-              "top's sideways distance from its start [m] (10^{-10}: at most that)");
+  Chart chart("A stack of 10 cubes, h = 1/60 s: its top's sideways drift (floor: 10^{-10} m)", "time [s]",
+              "top's sideways drift [m]");
   chart.logY().yRange(0.5 * kFloor, 10.0).xRange(0.0, duration);
   StackDrift drift;
   for (const SuiteColumn& column : columns) {
