@@ -36,8 +36,11 @@ int runView(int argc, char** argv, const std::vector<ViewScene>& scenes) {
     }
     if ((arg == "--scene" || arg == "--out") && k + 1 < argc) {
       (arg == "--scene" ? name : out) = argv[++k];
-    } else if (arg == "--max-bytes" && k + 1 < argc && parseBytes(argv[k + 1], max_bytes)) {
-      ++k;
+    } else if (arg == "--max-bytes" && k + 1 < argc) {
+      if (!parseBytes(argv[++k], max_bytes)) {
+        std::cerr << argv[0] << ": --max-bytes needs a positive whole number of bytes, got '" << argv[k] << "'\n";
+        return 2;
+      }
     } else {
       std::cerr << "usage: " << argv[0] << " [--scene NAME] [--out FILE] [--max-bytes N] [--list]\n";
       return 2;
