@@ -31,7 +31,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from grader import grader_of, is_identity  # noqa: E402  (the grader's identities of submitted code)
+from grader.sandbox import grader_of, is_identity  # noqa: E402  (the identities of submitted code)
 
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "tests" / "hidden" / "adversarial"
@@ -74,9 +74,9 @@ def markers(folders: list) -> set:
 
 def leftover_processes() -> list:
     """Processes a finished grade left behind. As root a grade runs submitted code under
-    identities that name its grader's process id (grader.identity()): a process of an identity
-    whose grader has ended is left behind, while other grades on the machine (with graders still
-    running) are not counted. Without root, processes in a grade's folders."""
+    identities that name its grader's process id (identity() in tools/grader/sandbox.py): a process
+    of an identity whose grader has ended is left behind, while other grades on the machine (with
+    graders still running) are not counted. Without root, processes in a grade's folders."""
     left = []
     for entry in os.scandir("/proc"):
         if not entry.name.isdigit():

@@ -1,4 +1,4 @@
-"""The class at a glance, after `./physlab grade subs/* --out R` (tools/grader.py): R/tests.csv, one
+"""The class at a glance, after `./physlab grade subs/* --out R` (tools/grader): R/tests.csv, one
 row per graded test with how the class did on it, and R/class.html, a page that needs nothing but
 itself (its charts are inline SVG drawn by gnuplot): a score histogram per lab, the tests failed
 most often with the handout section each grades (a link into the handout), and the checks that

@@ -25,7 +25,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from grader import failures_in, hint_table, section_files  # noqa: E402  (the grader's reading of Catch2's report)
+# The grader's reading of Catch2's report, its hint tables and its lab files' sections
+from grader.common import section_files  # noqa: E402
+from grader.failures import failures_in  # noqa: E402
+from grader.hints import hint_table  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 MUTANTS = ROOT / "tests" / "hidden" / "mutants"

