@@ -150,7 +150,7 @@ function(physlab_add_common)
   endif()
 
   # What the grader needs to compile a submission apart from this tree and link it with the
-  # instructor's objects (tools/grader.py reads it; see the Grading page).
+  # instructor's objects (tools/grader/kit.py reads it; see the Grading page).
   string(TOUPPER "${CMAKE_BUILD_TYPE}" build_type)
   list(JOIN PHYSLAB_WARNING_FLAGS " " warnings)
   file(GENERATE OUTPUT "${CMAKE_BINARY_DIR}/grading/toolchain.json" CONTENT "{
@@ -401,7 +401,7 @@ function(physlab_add_lab stage)
   # Partial credit: a test grades the functions of its handout sections ([sec=N] tags), so with
   # the reference at hand each student file also gets a library of its own beside the reference of
   # the lab's other files (physlab_NN_mix_<file>), linked into test_NN_labs_<file>; ./physlab test
-  # runs each test in the executable of the files its sections are in (tools/grader.py).
+  # runs each test in the executable of the files its sections are in (tools/grader/tree.py).
   set(mixes "")
   if(PHYSLAB_HAVE_SOLUTIONS AND lab_sources)
     foreach(unit IN LISTS lab_units)
