@@ -83,7 +83,7 @@ class Builder:
         budget = min(self.compile_timeout, self.deadline.left())
         if budget <= 1.0:
             return Compiled(error=f"{name}: not compiled: the grading deadline was reached")
-        slot = self.sandbox.acquire()
+        slot = self.sandbox.acquire(priority=len(source))
         work = Path(tempfile.mkdtemp(dir=self.shared, prefix="compile-"))
         try:
             (work / name).write_bytes(source)

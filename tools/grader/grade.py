@@ -31,7 +31,9 @@ def build_stage(builder: Builder, kit: Kit, labs: Submitted, result: StageResult
     stage = result.stage
     sources = submitted_sources(labs, stage, result.notes)
     stubs = {n: (ROOT / "labs" / stage / n).read_bytes() for n in sources}
-    with concurrent.futures.ThreadPoolExecutor(max_workers=len(builder.sandbox.slots)) as pool:
+    # A thread per file: each waits for a slot of the sandbox, which goes to the largest file
+    # waiting in any lab (Sandbox.acquire())
+    with concurrent.futures.ThreadPoolExecutor(max_workers=len(sources) + len(stubs) or 1) as pool:
         done = dict(zip(sources, pool.map(lambda n: builder.compile(stage, n, sources[n]), sources)))
         stub_objs = dict(zip(stubs, pool.map(lambda n: builder.compile(stage, n, stubs[n], "stub-"), stubs)))
     errors = [c.error + ("\n" + c.log if c.log else "") for c in done.values() if c.error]

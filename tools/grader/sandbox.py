@@ -4,6 +4,8 @@ process groups, and the kill and sweep that end whatever a run left behind.
 
 import ctypes
 import functools
+import heapq
+import itertools
 import os
 import shutil
 import signal
@@ -47,6 +49,7 @@ class Sandbox:
             raise RuntimeError("more than 128 parallel jobs: lower --jobs")
         self.free = list(self.slots)
         self.cond = threading.Condition()
+        self.waiting, self.tickets = [], itertools.count()  # acquire()'s queue: (-priority, arrival)
         self.gid = identity(group) if self.root and group is not None else None
         self.isolation = None  # how checkers start workers (Isolation), for remote stages
         try:  # orphans of a killed test become our children, so the sweep can find them
@@ -54,16 +57,23 @@ class Sandbox:
         except (OSError, AttributeError):
             pass
 
-    def acquire(self) -> int:
+    def acquire(self, priority: float = 0.0) -> int:
+        """A free slot. Of the threads waiting, the one of highest `priority` gets the next (a
+        compile passes its file's size: the long compiles start first, so that no slot idles at
+        the end of a grade while one long file compiles alone); equal ones in turn."""
         with self.cond:
-            while not self.free:
+            ticket = (-priority, next(self.tickets))
+            heapq.heappush(self.waiting, ticket)
+            while not self.free or self.waiting[0] != ticket:
                 self.cond.wait()
+            heapq.heappop(self.waiting)
+            self.cond.notify_all()  # the next in line may take another free slot
             return self.free.pop()
 
     def release(self, slot: int) -> None:
         with self.cond:
             self.free.append(slot)
-            self.cond.notify()
+            self.cond.notify_all()
 
     def ids(self, slot: int):
         """(uid, gid) of the slot's identity as root; None otherwise."""
