@@ -119,13 +119,13 @@ def write_tests_csv(out: Path, rows: dict) -> None:
     (out / "tests.csv").write_text(buffer.getvalue(), encoding="utf-8")
 
 
-def page(rows: dict, scores: dict, graded: dict, course) -> str:
+def page(rows: dict, scores: dict, graded: dict, course_name, cpu: str) -> str:
     esc = html.escape
     times = [seconds for _, _, seconds in graded.values()]
     failed = {name: data["extra_data"]["not_graded"] for name, (data, _, _) in graded.items()
               if data.get("extra_data", {}).get("not_graded")}
     title = f"PhysLab class report: {len(graded) - len(failed)} submissions graded" + \
-        (f", {len(failed)} not graded" if failed else "") + (f", course {course.name}" if course else "")
+        (f", {len(failed)} not graded" if failed else "") + (f", course {course_name}" if course_name else "")
     parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{esc(title)}</title>",
              "<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
              "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px;"
@@ -133,9 +133,9 @@ def page(rows: dict, scores: dict, graded: dict, course) -> str:
              ".charts{display:flex;flex-wrap:wrap;gap:1em}code{font-size:90%}</style></head><body>",
              f"<h1>{esc(title)}</h1>",
              f"<p>Graded in {sum(times) / 60:.1f} min of grading time, {sum(times) / len(times):.0f} s "
-             f"a submission on average (slowest {max(times):.0f} s).</p>",
-             *([f"<h2>Not graded</h2><p>The grading failed on these (twice), not their code: grade them "
-                f"again.</p><ul>" + "".join(f"<li>{esc(n)}: {esc(why)}</li>" for n, why in failed.items()) + "</ul>"]
+             f"a submission on average (slowest {max(times):.0f} s). {esc(cpu)}.</p>",
+             *(["<h2>Not graded</h2><p>The grading failed on these (twice), not their code: grade them "
+                "again.</p><ul>" + "".join(f"<li>{esc(n)}: {esc(why)}</li>" for n, why in failed.items()) + "</ul>"]
                if failed else []),
              "<h2>Scores per lab</h2><table><tr><th>lab</th><th>points</th><th>mean</th><th>median</th>"
              "<th>lowest</th><th>highest</th></tr>"]
@@ -175,8 +175,9 @@ def page(rows: dict, scores: dict, graded: dict, course) -> str:
     return "\n".join(parts)
 
 
-def write(out: Path, graded: dict, course=None) -> None:
-    """Writes out/tests.csv and out/class.html for the graded class {name: (data, results, s)}."""
+def write(out: Path, graded: dict, course_name=None, cpu: str = "") -> None:
+    """Writes out/tests.csv and out/class.html for the graded class {name: (data, results, s)},
+    graded with the course `course_name` (None: none); `cpu`: a line on its CPU time."""
     rows = per_test(graded)
     write_tests_csv(out, rows)
-    (out / "class.html").write_text(page(rows, lab_scores(graded), graded, course), encoding="utf-8")
+    (out / "class.html").write_text(page(rows, lab_scores(graded), graded, course_name, cpu), encoding="utf-8")

@@ -1,8 +1,10 @@
-"""The grader's commands and their options: `run` (./physlab test), `grade` (one submission or a
-class), `gradescope` (the zip) and `stages` (the labs a grade builds).
+"""The grader's commands and their options: `run` (./physlab test), `grade` (one submission, a
+class or a shard of one), `merge` (a class's shards), `gradescope` (the zip) and `stages` (the
+labs a grade builds).
 """
 
 import argparse
+import json
 import os
 import shutil
 import sys
@@ -13,9 +15,8 @@ from pathlib import Path
 import course as course_file  # tools/course.py, beside the package
 
 from . import __doc__ as GRADER_DOC
-from .classes import csv_text, grade_class
-from .common import (ROOT, Program, StageResult, discover_stages, graded_stages, select_stages,
-                     write_atomically)
+from .classes import SHARD, grade_class, merge_shards, projection, shard_of, write_class, write_shard
+from .common import ROOT, Program, StageResult, discover_stages, graded_stages, select_stages
 from .grade import grade_one
 from .gradescope import cmd_gradescope
 from .hints import hint_problems, tag_problems
@@ -103,6 +104,15 @@ def cmd_grade(args) -> int:
     anything is graded."""
     out = Path(args.out).resolve()
     problems = submission_problems(args.submissions)
+    if args.shard:
+        # The same share whichever machine grades it: a class is always graded into out/<name>/
+        args.submissions = shard_of(args.submissions, args.shard)
+        if not args.submissions and not problems:
+            i, n = args.shard
+            out.mkdir(parents=True, exist_ok=True)
+            write_shard(out, args.shard, None, [], 0.0)
+            print(f"grader: shard {i}/{n} has no submission (fewer submissions than shards)")
+            return 0
     course = None
     if args.course:
         try:
@@ -115,14 +125,14 @@ def cmd_grade(args) -> int:
     if problems:
         for problem in problems:
             print(f"grader: {problem}", file=sys.stderr)
-        if len(args.submissions) == 1:  # Gradescope: the student's result says why
+        if len(args.submissions) == 1 and not args.shard:  # Gradescope: the student's result says why
             failure_outputs(out, f"PhysLab grade of {Path(args.submissions[0]).name}",
                             "; ".join(problems), 0.0)
         print("grader: nothing graded", file=sys.stderr)
         return 2
     limits_of(args, course)
     out.mkdir(parents=True, exist_ok=True)
-    single = len(args.submissions) == 1
+    single = len(args.submissions) == 1 and not args.shard
     # A class is graded several submissions at once, each with sandbox users of its own; as the
     # current user (not root) nothing keeps two submissions' processes apart: one at a time.
     root = os.geteuid() == 0
@@ -150,26 +160,51 @@ def cmd_grade(args) -> int:
             print(f"grader: not graded: {not_graded(data)}", file=sys.stderr)
             return EXIT_NOT_GRADED
         return 0
-    graded = grade_class(args, kit, sandboxes, out, course)
-    rows = ["submission,score,max_score"]
-    rows += [f"{name},not graded ({csv_text(not_graded(data))}),"
-             if not_graded(data) else f"{name},{data['score']:g},{data['max_score']:g}"
-             for name, (data, _, _) in graded.items()]
-    write_atomically(out / "scores.csv", "\n".join(rows) + "\n")
-    import class_report  # the class's tables and page: only an instructor grading a class needs them
-    class_report.write(out, graded, course)
+    used = os.times()
+    grade_class(args, kit, sandboxes, out, course)
+    done = os.times()
+    cpu = sum(b - a for a, b in zip(used[:4], done[:4]))  # this process and every child it waited for
+    names = [Path(p).absolute().name for p in args.submissions]
+    course_name = course.name if course is not None else None
+    graded = write_class(out, names, course_name, cpu)
+    write_shard(out, args.shard or (1, 1), course_name, names, cpu)
+    return class_summary(out, graded, f"{parallel} at a time", cpu)
+
+
+def class_summary(out: Path, graded: dict, how: str, cpu: float) -> int:
+    """Prints each submission's score and time, the class's times, where its tables are, and the
+    submissions not graded; returns grade's exit status."""
     for name, (data, _, seconds) in graded.items():
         score = f"not graded ({not_graded(data)})" if not_graded(data) else f"{data['score']:g},{data['max_score']:g}"
         print(f"{name},{score}  ({seconds:.0f} s)")
     times = [seconds for _, _, seconds in graded.values()]
-    print(f"{len(times)} submissions, {parallel} at a time: {sum(times) / len(times):.0f} s each on "
+    print(f"{len(times)} submissions, {how}: {sum(times) / len(times):.0f} s each on "
           f"average (slowest {max(times):.0f} s)")
+    print(projection(cpu, len(times)))
     print(f"wrote {out / 'scores.csv'}, {out / 'tests.csv'} and {out / 'class.html'}")
     failed = [name for name, (data, _, _) in graded.items() if not_graded(data)]
     if failed:
         print(f"grader: {len(failed)} not graded (tried twice): {', '.join(failed)}", file=sys.stderr)
         return EXIT_NOT_GRADED
     return 0
+
+
+def cmd_merge(args) -> int:
+    """Joins the outputs of a class graded in shards (grade --shard I/N on several machines) into
+    --out: each submission's folder, and scores.csv, tests.csv and class.html as one grade of the
+    whole class writes them."""
+    out = Path(args.out).resolve()
+    graded, problems = merge_shards([Path(f).resolve() for f in args.shards], out)
+    if problems:
+        for problem in problems:
+            print(f"grader: merge: {problem}", file=sys.stderr)
+        print("grader: merge: nothing written", file=sys.stderr)
+        return 2
+    if not graded:
+        print("grader: merge: the shards hold no submission", file=sys.stderr)
+        return 2
+    cpu = json.loads((out / SHARD).read_text())["cpu_seconds"]
+    return class_summary(out, graded, f"merged from {len(args.shards)} shards", cpu)
 
 
 def cmd_stages(args) -> int:
@@ -196,6 +231,13 @@ def whole_number(text: str) -> int:
     if not text.isdigit():
         raise argparse.ArgumentTypeError(f"needs a whole number (e.g. 42), got '{text}'")
     return int(text)
+
+
+def shard_spec(text: str) -> tuple:
+    i, _, n = text.partition("/")
+    if not (i.isdigit() and n.isdigit() and 1 <= int(i) <= int(n)):
+        raise argparse.ArgumentTypeError(f"needs I/N with 1 <= I <= N (e.g. 2/4), got '{text}'")
+    return int(i), int(n)
 
 
 def seconds(text: str) -> float:
@@ -240,7 +282,14 @@ def main() -> int:
                        help="seconds to compile one lab file (default 120, or the course file's)")
     grade.add_argument("--course", help="the course file (the Grading page): its labs, sections, "
                                         "points, hidden tests and time limits")
+    grade.add_argument("--shard", type=shard_spec, default=None, metavar="I/N",
+                       help="grade the I-th of N shares of the submissions (by name), into DIR/<name>/, "
+                            "for `merge` to join")
     grade.set_defaults(func=cmd_grade)
+    merge = sub.add_parser("merge", help="join the outputs of a class graded in shards")
+    merge.add_argument("shards", nargs="+", metavar="SHARD", help="each shard's --out folder")
+    merge.add_argument("--out", required=True, help="the class's folder (may be one of the shards' parent)")
+    merge.set_defaults(func=cmd_merge)
     package = sub.add_parser("gradescope", help="write the Gradescope autograder zip")
     package.add_argument("--out", required=True, help="the zip file to write")
     package.add_argument("--course", help="the course file the zip grades with (physlab/course.toml)")
