@@ -44,6 +44,9 @@
 /// the step against the other bodies with Lab 4's conservative advancement, and moves it only
 /// until just into the first one it would hit (continuousAdvance(), section 10): the next step
 /// finds that contact and answers it. Slow bodies cost one comparison each.
+/// The respond phase solves each contact island (the moving bodies joined through contacts) on its
+/// own, Settings::islands; with Settings::sleeping an island whose bodies have all been still for
+/// a while (sleepTimer()) sleeps until an awake body touches it (section 12).
 /// Given a RestingContactSolver (Lab 6), the respond phase hands it the points that are not
 /// colliding (every point, when the solver bounces() itself); without one (Lab 5) the impulse
 /// solver handles them too, with \f$\epsilon = 0\f$.
