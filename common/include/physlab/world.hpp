@@ -153,8 +153,8 @@ struct Settings {
   /// and it is neither pushed by gravity, moved, nor solved, and no narrow phase runs between
   /// two sleeping bodies or a sleeping and a fixed one, until an awake body touches one of its
   /// bodies or setState() changes one (that island wakes, and only it). Off by default: with it
-  /// on, every World step calls the student's sleepTimer(), and a resting body that falls asleep
-  /// no longer shows the solver's small drift the contact suite measures.
+  /// on, every World step calls the student's sleepTimer(), so an unwritten one would fail every
+  /// World test of Lab 5 (the contact suite's measures all hold with it on, in Labs 5 and 6).
   bool sleeping = false;
   double sleep_linear = 0.05;   ///< a body is still at or below this speed of its centre [m/s], >= 0
   double sleep_angular = 0.05;  ///< ... and at or below this angular speed [rad/s], >= 0
