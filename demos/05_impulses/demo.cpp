@@ -490,6 +490,97 @@ void phaseCostChart(const DemoOptions& options, std::vector<std::string>& writte
 }
 
 // ---------------------------------------------------------------------------------------------
+// Islands and sleeping (section 12)
+
+// A field of 6 x 6 stacks of five 20 cm boxes, each box dropped 2 cm above the one below, shifted
+// and turned a little (every stack its own island once it stands; the falls and the tilts take
+// about a second to settle).
+Scene stackField() {
+  Scene scene;
+  scene.bodies.push_back(BodyDescription::plane(Vec3::UnitZ(), 0.0, 0.0, 0.5));
+  scene.states.push_back(BodyState{});
+  const int side = 6, levels = 5;
+  for (int k = 0; k < side * side; ++k) {
+    for (int level = 0; level < levels; ++level) {
+      scene.bodies.push_back(BodyDescription::box(1.0, Vec3::Constant(0.1), 0.0, 0.5));
+      BodyState s;
+      const double sign = level % 2 == 0 ? 1.0 : -1.0;
+      s.x = Vec3(0.6 * (k % side) + 0.02 * sign, 0.6 * (k / side), 0.1 + 0.22 * level);
+      s.q = Quat(Eigen::AngleAxisd(0.1 * sign * (1 + k % 3), Vec3::UnitZ()));
+      scene.states.push_back(s);
+    }
+  }
+  return scene;
+}
+
+// The stack field settling, sequential impulses at 60 Hz, sleeping off and on: the largest speed
+// and spin of any body (where the thresholds stand against what a settling pile still does) and
+// the time of each step (what sleeping saves once it rests).
+void sleepCharts(const DemoOptions& options, std::vector<std::string>& written, Table& table) {
+  const double h = 1.0 / 60, duration = options.quick ? 4.0 : 8.0;
+  const long steps = std::lround(duration / h);
+  // Each point is the least step time of this many steps: other jobs on the machine only add to a step
+  const long window = 10;
+  const Settings awake_settings = settingsFor(ResponseMethod::Sequential);
+  Settings sleep_settings = awake_settings;
+  sleep_settings.sleeping = true;
+  Series largest_v{"largest |v| [m/s]", {}, {}, "lines lc rgb '#1f5fbf'"};
+  Series largest_w{"largest |omega| [rad/s]", {}, {}, "lines dt 2 lc rgb '#1f5fbf'"};
+  Series cost_off{"sequential, sleeping off", {}, {}, "lines"};
+  Series cost_on{"sequential, sleeping on", {}, {}, "lines dt 2"};
+  const bool drawn = attempt("sleeping", [&] {
+    const Scene scene = stackField();
+    const int boxes = static_cast<int>(scene.bodies.size()) - 1;
+    for (const bool sleeping : {false, true}) {
+      World world(scene, sleeping ? sleep_settings : awake_settings);
+      Series& cost = sleeping ? cost_on : cost_off;
+      double window_least = kNaN, settled_least = kNaN;
+      double all_asleep = kNaN;
+      for (long n = 1; n <= steps; ++n) {
+        Stopwatch clock;
+        world.step(h);
+        const double seconds = clock.seconds();
+        window_least = std::isnan(window_least) ? seconds : std::min(window_least, seconds);
+        // The last second: the field at rest
+        if (world.time() > duration - 1.0) settled_least = std::isnan(settled_least) ? seconds : std::min(settled_least, seconds);
+        if (n % window == 0) {
+          cost.x.push_back(world.time());
+          cost.y.push_back(1e3 * window_least);
+          window_least = kNaN;
+        }
+        if (!sleeping) {
+          double v = 0.0, w = 0.0;
+          for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i) {
+            v = std::max(v, world.velocity(i).norm());
+            w = std::max(w, world.angularVelocity(i).norm());
+          }
+          largest_v.x.push_back(world.time());
+          largest_v.y.push_back(std::max(v, 1e-6));
+          largest_w.x.push_back(world.time());
+          largest_w.y.push_back(std::max(w, 1e-6));
+        } else if (std::isnan(all_asleep) && world.diagnostics().asleep == boxes) {
+          all_asleep = world.time();
+        }
+      }
+      table.add({std::string("field of ") + std::to_string(boxes) + " boxes, sleeping " + (sleeping ? "on" : "off") +
+                     ": least ms per step in the last second" + (sleeping ? "; all asleep at [s]" : ""),
+                 fmt(1e3 * settled_least, 3) + (sleeping ? "; " + fmt(all_asleep, 3) : ""), ""});
+    }
+  });
+  if (!drawn) return;
+  Chart speeds("36 stacks of 5 boxes settling, sleeping off: the fastest body against the sleep thresholds",
+               "time [s]", "speed");
+  speeds.logY().add(largest_v).add(largest_w);
+  speeds.add({"sleep thresholds (0.05)", {0.0, duration}, {Settings{}.sleep_linear, Settings{}.sleep_linear},
+              "lines dt 3 lc rgb 'gray30'"});
+  for (const auto& p : speeds.save(options.out + "/lab05_sleep_speeds")) written.push_back(p);
+  Chart cost("36 stacks of 5 boxes settling (60 Hz): time of a step (least of 10), sleeping off and on", "time [s]",
+             "ms per step");
+  cost.logY().add(cost_off).add(cost_on);
+  for (const auto& p : cost.save(options.out + "/lab05_sleep_cost")) written.push_back(p);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Animations
 
 Mat3X toMatrix(const std::vector<Vec3>& points) {
@@ -823,6 +914,7 @@ int main(int argc, char** argv) {
     apexChart(options, written, table);
     rollingChart(options, written, table);
     phaseCostChart(options, written, table);
+    sleepCharts(options, written, table);
     cradleAnimation(options, written);
     rainAnimation(options, written);
     timewarpTimesChart(options, written, table);

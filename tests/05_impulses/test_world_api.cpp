@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -230,4 +231,63 @@ TEST_CASE("contact suite: a run that stops being finite makes the shaken median 
   CHECK(std::isnan(spread[1].largest));
   CHECK(std::isnan(spread[1].median.value));  // five NaN of nine: the median is one of them
   CHECK_FALSE(spread[1].median.pass());
+}
+
+namespace {
+
+// The largest difference of position, orientation or momentum of any body between two worlds
+double largestDifference(const World& a, const World& b) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < a.states().size(); ++i) {
+    const BodyState &s = a.states()[i], &t = b.states()[i];
+    largest = std::max({largest, (s.x - t.x).cwiseAbs().maxCoeff(), (s.q.coeffs() - t.q.coeffs()).cwiseAbs().maxCoeff(),
+                        (s.P - t.P).cwiseAbs().maxCoeff(), (s.L - t.L).cwiseAbs().maxCoeff()});
+  }
+  return largest;
+}
+
+}  // namespace
+
+TEST_CASE("world islands: each island solved on its own gives the whole scene's states, to the bit with tolerance 0", "[common]") {
+  // A rain of 60 bodies settling into piles on the container's floor: many islands at once
+  for (const ResponseMethod method : {ResponseMethod::Sequential, ResponseMethod::Simultaneous}) {
+    CAPTURE(responseMethodName(method));
+    Settings settings;
+    settings.method = method;
+    // Tolerance 0: a solve stops only at a sweep that changes nothing, after which further
+    // sweeps change nothing either, so the whole scene's extra sweeps leave a quiet island as it was
+    settings.tolerance = 0.0;
+    settings.iterations = 100;
+    Settings whole = settings;
+    whole.islands = false;
+    World by_island(boxRain(60, 7), settings), one_system(boxRain(60, 7), whole);
+    int most_islands = 0;
+    for (int n = 0; n < 300; ++n) {
+      by_island.step(1.0 / 60.0);
+      one_system.step(1.0 / 60.0);
+      most_islands = std::max(most_islands, by_island.diagnostics().islands);
+      REQUIRE(one_system.diagnostics().islands <= 1);
+    }
+    CHECK(most_islands > 5);
+    CHECK(largestDifference(by_island, one_system) == 0.0);
+    CHECK(by_island.diagnostics().largest_island <= by_island.diagnostics().contacts);
+  }
+}
+
+TEST_CASE("world islands and sleeping: bad sleep settings are refused by name, and asleep() checks its index", "[common]") {
+  for (const double bad : {-1e-9, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    CAPTURE(bad);
+    Settings s;
+    s.sleep_linear = bad;
+    CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), s), Contains("sleep_linear"));
+    s = Settings{};
+    s.sleep_angular = bad;
+    CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), s), Contains("sleep_angular"));
+    s = Settings{};
+    s.sleep_time = bad;
+    CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), s), Contains("sleep_time"));
+  }
+  World world(bouncingBall(1.0, 0.5));
+  CHECK_FALSE(world.asleep(0));
+  CHECK_THROWS_AS(world.asleep(2), InvalidInput);
 }

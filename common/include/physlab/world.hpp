@@ -44,6 +44,9 @@
 /// the step against the other bodies with Lab 4's conservative advancement, and moves it only
 /// until just into the first one it would hit (continuousAdvance(), section 10): the next step
 /// finds that contact and answers it. Slow bodies cost one comparison each.
+/// The respond phase solves each contact island (the moving bodies joined through contacts) on its
+/// own, Settings::islands; with Settings::sleeping an island whose bodies have all been still for
+/// a while (sleepTimer()) sleeps until an awake body touches it (section 12).
 /// Given a RestingContactSolver (Lab 6), the respond phase hands it the points that are not
 /// colliding (every point, when the solver bounces() itself); without one (Lab 5) the impulse
 /// solver handles them too, with \f$\epsilon = 0\f$.
@@ -136,6 +139,26 @@ struct Settings {
   /// body on a light one stands on what carries it. A response the solver converged is left as
   /// it was. Not with the penalty method, nor with a resting solver that substeps().
   bool shock_propagation = true;
+  /// Contact islands (section 12): each step the moving bodies connected through contacts (fixed
+  /// bodies and planes join none) are grouped by union-find, and the response, the resting-contact
+  /// solver and the shock propagation solve each island's contacts on their own, in the order the
+  /// contacts have in the scene: a Gauss-Seidel sweep of an island touches only its bodies, so the
+  /// impulse solvers give the whole scene's answers (to the bit with tolerance 0; within the
+  /// tolerance otherwise, as each island stops when it is quiet), and an exact resting solver
+  /// solves one small LCP per island. Off: the scene is one system. A resting solver that
+  /// substeps() moves every body in one solve and always takes the scene as one system.
+  bool islands = true;
+  /// Sleeping (section 12): an island every body of which has stayed at or below sleep_linear and
+  /// sleep_angular for sleep_time, by sleepTimer(), falls asleep: its velocities are set to zero
+  /// and it is neither pushed by gravity, moved, nor solved, and no narrow phase runs between
+  /// two sleeping bodies or a sleeping and a fixed one, until an awake body touches one of its
+  /// bodies or setState() changes one (that island wakes, and only it). Off by default: with it
+  /// on, every World step calls the student's sleepTimer(), so an unwritten one would fail every
+  /// World test of Lab 5 (the contact suite's measures all hold with it on, in Labs 5 and 6).
+  bool sleeping = false;
+  double sleep_linear = 0.05;   ///< a body is still at or below this speed of its centre [m/s], >= 0
+  double sleep_angular = 0.05;  ///< ... and at or below this angular speed [rad/s], >= 0
+  double sleep_time = 0.5;      ///< an island sleeps once all its bodies have been still this long [s], >= 0
 
   /// One line naming every setting and its value.
   std::string toString() const;
@@ -298,6 +321,15 @@ Vec3 penaltyForce(double depth, double v_rel, const Vec3& n, double k, double d)
 /// positive and finite, speed or overlap is negative or not finite, or a hit is NaN, negative,
 /// or past h (naming the hit). Allocates nothing unless it throws. Handout: Lab 5, section 10.
 double continuousAdvance(const std::vector<double>& hits, double h, double speed, double overlap);
+
+/// Sleeping (section 12): a body's time spent still after a step of size h [s]. The body is still
+/// when its speed \f$|v|\f$ is at most `linear` [m/s] and its angular speed \f$|\omega|\f$ at most
+/// `angular` [rad/s], both ends included (a body exactly at a threshold is still); then the timer
+/// grows by h, `timer + h`; otherwise it starts again at 0. An island sleeps once every body's
+/// timer has reached Settings::sleep_time. InvalidInput, naming the argument, when v or omega is
+/// not finite, timer or a threshold is negative or not finite, or h is not positive and finite.
+/// Handout: Lab 5, section 12.
+double sleepTimer(const Vec3& v, const Vec3& omega, double timer, double h, double linear, double angular);
 ///@}
 
 // ---------------------------------------------------------------------------------------------
@@ -314,8 +346,11 @@ struct Diagnostics {
   int contacts = 0;                 ///< contact points found this step
   int colliding = 0;                ///< of which colliding
   int resting = 0;                  ///< of which resting
-  int iterations = 0;               ///< solver sweeps this step (impulses, the resting solver's and the shock propagation's)
+  int iterations = 0;               ///< solver sweeps this step (impulses, the resting solver's and the shock propagation's; of each, the most any island took)
   int levels = 0;                   ///< levels the shock propagation solved this step (0: none)
+  int islands = 0;                  ///< islands with contacts this step, each solved on its own (1 with Settings::islands off and any contact)
+  int largest_island = 0;           ///< contact points of the largest of them
+  int asleep = 0;                   ///< bodies asleep after this step (Settings::sleeping)
 };
 
 /// Seconds spent in each phase since the World was made (or resetTimers()).
@@ -390,8 +425,10 @@ class World {
   /// when it answers the colliding points), which points the solver answers ("every point (bounces
   /// too): ..." or "colliding points: impulses, resting: ...") and its description.
   std::string describe() const;
-  /// Replaces body i's state (validated).
+  /// Replaces body i's state (validated); wakes its island when it sleeps.
   void setState(int i, const BodyState& state);
+  /// True while body i sleeps (Settings::sleeping; fixed bodies never do). InvalidInput when i is not a body.
+  bool asleep(int i) const;
   /// Velocity of body i's centre, \f$P/m\f$ (zero when fixed) [m/s]. InvalidInput when i is not a body.
   Vec3 velocity(int i) const;
   /// Angular velocity of body i, \f$I^{-1} L\f$ (zero when fixed) [rad/s]. InvalidInput when i is not a body.
@@ -413,6 +450,18 @@ class World {
   void classifyContacts();
   void respond(double h);
   void solveRestingContacts(double h);
+  // Islands (section 12): union-find over the contacts; the chosen contacts ordered island by
+  // island; each island's solve on copies of its bodies and contacts
+  int findRoot(int i);
+  void findIslands();
+  void groupByIsland(const std::vector<int>& chosen);
+  enum class Solver { Impulses, Resting };
+  int solveIslands(std::vector<ContactBody>& bodies, Solver solver, bool keep_impulses, double h);
+  // Sleeping (section 12): waking the islands awake bodies touch, timers, falling asleep
+  bool awakeMoving(int i) const { return !bodies_[i].fixed && !asleep_[i]; }
+  void wakeTouchedIslands();
+  void wake(int i);
+  void updateSleep(double h);
   // Shock propagation (section 11): the contacts solved again level by level from the ground up
   void propagateShock(double h);
   void findLevels();
@@ -423,7 +472,7 @@ class World {
   void computeDiagnostics();
   void loadContactBodies();
   void storeContactBodies();
-  void applyPenaltyForces(std::vector<Contact>& contacts, double h);
+  void applyPenaltyForces(const std::vector<int>& chosen, double h);
   void requireBody(int i) const;
 
   std::vector<BodyDescription> bodies_;
@@ -454,7 +503,7 @@ class World {
   std::vector<Aabb> boxes_;
   std::unique_ptr<IncrementalBroadPhase> broad_phase_;
   std::shared_ptr<RestingContactSolver> resting_solver_;
-  std::vector<Contact> colliding_;
+  std::vector<int> chosen_;  // the contacts a solve takes (indices into contacts_)
   std::vector<Mat3> inv_inertia_body_;     // I_body^-1 once, 0 when fixed
   PairList found_;                         // the broad phase's pairs, refilled in place
   std::vector<int> resting_;
@@ -483,9 +532,28 @@ class World {
   std::vector<int> level_, first_, neighbours_, queue_;
   std::vector<int> body_level_start_, contacts_by_level_, contact_level_start_;
   std::vector<ContactBody> held_;
-  std::vector<Contact> level_contacts_;
   std::vector<int> level_points_;
   std::vector<Vec3> shift_, turn_;
+  // Islands: the union-find forest over the bodies (parent, size of each root's tree), each
+  // contact's island, the chosen contacts of a solve by island (island g from group_start_[g]
+  // to [g + 1]), and one island's bodies and contacts as its solver takes them (local indices;
+  // island_members_ the World's index of each local body, local_ the reverse, -1 outside)
+  std::vector<int> parent_, tree_size_, island_of_, contact_island_, island_count_, group_next_;
+  std::vector<int> group_, group_start_;
+  std::vector<int> island_members_, local_, island_points_, island_contact_index_;
+  std::vector<ContactBody> island_bodies_;
+  std::vector<Contact> island_contacts_;
+  std::vector<BodyDescription> island_descriptions_;
+  std::vector<BodyState> island_states_;
+  int island_total_ = 0;  // islands this step, bodies without contacts included
+  // Sleeping: each body's time still [s], whether it sleeps, and its island's label while it does
+  // (the island's root when it fell asleep); the contacts of the sleeping islands, kept to warm
+  // start them when they wake
+  std::vector<double> still_time_;
+  std::vector<char> asleep_;
+  std::vector<int> sleep_label_;
+  std::vector<Contact> sleeping_contacts_;
+  std::vector<double> island_still_;
   Diagnostics diagnostics_;
   PhaseTimes times_;
   double time_ = 0.0;

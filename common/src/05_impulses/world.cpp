@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <ostream>
 #include <sstream>
@@ -77,6 +78,9 @@ void validateSettings(const Settings& s) {
   }
   requirePositive(s.penalty_k, "settings penalty stiffness k");
   requireNonNegative(s.penalty_d, "settings penalty damping d");
+  requireNonNegative(s.sleep_linear, "settings sleep_linear");
+  requireNonNegative(s.sleep_angular, "settings sleep_angular");
+  requireNonNegative(s.sleep_time, "settings sleep_time");
 }
 
 }  // namespace
@@ -137,7 +141,9 @@ std::string Settings::toString() const {
       << " broad_phase=" << (use_broad_phase ? "incremental tree" : "all pairs")
       << " position_correction=" << position_correction << " slop=" << slop
       << " correction_sweeps=" << correction_sweeps << " continuous=" << (continuous ? "on" : "off")
-      << " shock_propagation=" << (shock_propagation ? "on" : "off");
+      << " shock_propagation=" << (shock_propagation ? "on" : "off") << " islands=" << (islands ? "on" : "off")
+      << " sleeping=" << (sleeping ? "on" : "off");
+  if (sleeping) out << " sleep_linear=" << sleep_linear << " sleep_angular=" << sleep_angular << " sleep_time=" << sleep_time;
   return out.str();
 }
 
@@ -164,6 +170,14 @@ World::World(Scene scene, Settings settings, std::shared_ptr<RestingContactSolve
     inner_.push_back(isPlane(bodies_[i]) ? 0.0 : innerRadius(bodies_[i].shape));
   }
   broad_phase_ = std::make_unique<IncrementalBroadPhase>();
+  const std::size_t n = bodies_.size();
+  parent_.resize(n);
+  tree_size_.resize(n);
+  island_of_.assign(n, -1);
+  local_.assign(n, -1);
+  still_time_.assign(n, 0.0);
+  asleep_.assign(n, 0);
+  sleep_label_.assign(n, -1);
 }
 
 BodyState BodyState::moving(const BodyDescription& body, const Vec3& x, const Quat& q, const Vec3& v,
@@ -197,6 +211,14 @@ void World::setState(int i, const BodyState& state) {
   states_[i] = state;
   states_[i].q.normalize();
   if (bodies_[i].fixed) states_[i].P = states_[i].L = Vec3::Zero();
+  // A body put somewhere else, or set moving, is no longer still
+  if (asleep_[i]) wake(i);
+  still_time_[i] = 0.0;
+}
+
+bool World::asleep(int i) const {
+  requireBody(i);
+  return asleep_[i] != 0;
 }
 
 std::string World::describe() const {
@@ -209,7 +231,11 @@ std::string World::describe() const {
   out << "gravity=(" << s.gravity.x() << ", " << s.gravity.y() << ", " << s.gravity.z() << ")"
       << " broad_phase=" << (s.use_broad_phase ? "incremental tree" : "all pairs")
       << " continuous=" << (s.continuous ? "on" : "off")
-      << " shock_propagation=" << (s.shock_propagation ? "on" : "off");
+      << " shock_propagation=" << (s.shock_propagation ? "on" : "off") << " islands=" << (s.islands ? "on" : "off")
+      << " sleeping=" << (s.sleeping ? "on" : "off");
+  if (s.sleeping) {
+    out << " sleep_linear=" << s.sleep_linear << " sleep_angular=" << s.sleep_angular << " sleep_time=" << s.sleep_time;
+  }
   if (s.position_correction > 0.0) {
     out << " position_correction=" << s.position_correction << " slop=" << s.slop
         << " correction_sweeps=" << s.correction_sweeps;
@@ -250,11 +276,15 @@ void World::step(double h) {
   requirePositive(h, "step size h");
   // Candidate pairs whose bounding boxes overlap, plus every moving body against every plane
   findCandidatePairs();
-  // Contact manifolds of the candidates, as contact points
+  // A sleeping island that an awake body touches wakes (sleeping on)
+  wakeTouchedIslands();
+  // Contact manifolds of the candidates with an awake moving body, as contact points
   computeContacts();
   // v_rel at each point with the velocities that brought the bodies together: colliding,
   // resting or separating
   classifyContacts();
+  // The moving bodies connected through contacts, each island solved on its own
+  findIslands();
   // Gravity: v += g h on every moving body
   applyForces(h);
   // Impulses (or penalty forces) that stop the approach
@@ -263,6 +293,8 @@ void World::step(double h) {
   integrate(h);
   // Overlap the velocities cannot remove: move and turn the bodies apart, point by point
   correctPositions(h);
+  // Each body's time still; an island still long enough falls asleep (sleeping on)
+  updateSleep(h);
   // Energies, momenta, penetration
   computeDiagnostics();
   time_ += h;
@@ -273,7 +305,7 @@ void World::applyForces(double h) {
   PhaseTimer timer(times_.forces);
   const Vec3 dv = h * settings_.gravity;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_[i].fixed) continue;
+    if (bodies_[i].fixed || asleep_[i]) continue;
     states_[i].P += bodies_[i].mass * dv;
     // The solver's copy of the velocities, loaded by classifyContacts(), gets the same change
     if (!contacts_.empty()) contact_bodies_[i].v += dv;
@@ -321,10 +353,27 @@ void World::computeContacts() {
     ++last_pairs_.back().end;
     last_impulses_.push_back({c.id, c.p, c.j, c.j_t});
   }
+  // The contacts a woken island had when it fell asleep warm start it (a pair may come twice:
+  // lastImpulse() searches every run of its key)
+  if (!sleeping_contacts_.empty()) {
+    for (const Contact& c : sleeping_contacts_) {
+      if (asleep_[c.a] || asleep_[c.b]) continue;
+      const std::uint64_t key = pairKey(c.a, c.b);
+      const int k = static_cast<int>(last_impulses_.size());
+      if (last_pairs_.empty() || last_pairs_.back().key != key) last_pairs_.push_back({key, k, k});
+      ++last_pairs_.back().end;
+      last_impulses_.push_back({c.id, c.p, c.j, c.j_t});
+    }
+    sleeping_contacts_.erase(std::remove_if(sleeping_contacts_.begin(), sleeping_contacts_.end(),
+                                            [&](const Contact& c) { return !asleep_[c.a] && !asleep_[c.b]; }),
+                             sleeping_contacts_.end());
+  }
   std::sort(last_pairs_.begin(), last_pairs_.end(), [](const LastPair& x, const LastPair& y) { return x.key < y.key; });
   contacts_.clear();
   for (const BoxPair& pair : pairs_) {
     const int a = pair.first, b = pair.second;
+    // Neither moves (asleep or fixed): nothing to find
+    if (!awakeMoving(a) && !awakeMoving(b)) continue;
     const Manifold m = collide(bodies_[a].shape, Pose{states_[a].x, states_[a].q}, bodies_[b].shape,
                                Pose{states_[b].x, states_[b].q});
     for (int k = 0; k < m.count; ++k) {
@@ -348,7 +397,9 @@ void World::loadContactBodies() {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     ContactBody& cb = contact_bodies_[i];
     cb.x = states_[i].x;
-    if (bodies_[i].fixed) {
+    // A sleeping body stands still as a fixed one: a solver that moves every body (the soft
+    // step) leaves it where it is
+    if (bodies_[i].fixed || asleep_[i]) {
       cb.v = cb.omega = Vec3::Zero();
       cb.inv_mass = 0.0;
       cb.I_inv_world = Mat3::Zero();
@@ -364,7 +415,7 @@ void World::loadContactBodies() {
 
 void World::storeContactBodies() {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_[i].fixed) continue;
+    if (bodies_[i].fixed || asleep_[i]) continue;
     const Mat3 R = states_[i].q.toRotationMatrix();
     states_[i].P = bodies_[i].mass * contact_bodies_[i].v;
     states_[i].L = R * bodies_[i].inertia_body * R.transpose() * contact_bodies_[i].omega;
@@ -431,34 +482,18 @@ void World::respond(double h) {
     PhaseTimer timer(times_.respond);
     // Without a resting-contact solver the impulses answer every point; with one, only the
     // colliding points, and the solver takes the others (or every point, when it bounces itself)
-    std::vector<Contact>* answered = &contacts_;
-    if (resting_solver_ && resting_solver_->bounces()) {
-      colliding_.clear();
-      answered = &colliding_;
-    } else if (resting_solver_) {
-      colliding_.clear();
-      for (const Contact& c : contacts_) {
-        if (c.kind == ContactKind::Colliding) colliding_.push_back(c);
-      }
-      answered = &colliding_;
-    }
-    if (!answered->empty()) {
-      switch (settings_.method) {
-        case ResponseMethod::Sequential:
-          diagnostics_.iterations = solveSequential(contact_bodies_, *answered, settings_);
-          break;
-        case ResponseMethod::Simultaneous:
-          diagnostics_.iterations = solveSimultaneous(contact_bodies_, *answered, settings_);
-          break;
-        case ResponseMethod::Penalty:
-          applyPenaltyForces(*answered, h);
-          break;
+    chosen_.clear();
+    if (!(resting_solver_ && resting_solver_->bounces())) {
+      for (int k = 0; k < static_cast<int>(contacts_.size()); ++k) {
+        if (!resting_solver_ || contacts_[k].kind == ContactKind::Colliding) chosen_.push_back(k);
       }
     }
-    if (resting_solver_ && !resting_solver_->bounces()) {
-      std::size_t next = 0;
-      for (Contact& c : contacts_) {
-        if (c.kind == ContactKind::Colliding) c = colliding_[next++];
+    if (!chosen_.empty()) {
+      if (settings_.method == ResponseMethod::Penalty) {
+        applyPenaltyForces(chosen_, h);
+      } else {
+        groupByIsland(chosen_);
+        diagnostics_.iterations = solveIslands(contact_bodies_, Solver::Impulses, true, h);
       }
     }
   }
@@ -470,6 +505,138 @@ void World::respond(double h) {
   }
   PhaseTimer timer(times_.respond);
   storeContactBodies();
+}
+
+int World::findRoot(int i) {
+  // Path halving: every other body on the way points to its grandparent
+  while (parent_[i] != i) {
+    parent_[i] = parent_[parent_[i]];
+    i = parent_[i];
+  }
+  return i;
+}
+
+void World::findIslands() {
+  diagnostics_.islands = diagnostics_.largest_island = 0;
+  if (!settings_.islands && !settings_.sleeping) {
+    if (!contacts_.empty()) diagnostics_.islands = 1;
+    diagnostics_.largest_island = static_cast<int>(contacts_.size());
+    return;
+  }
+  // Union-find over the awake moving bodies: a contact between two of them joins their trees,
+  // the smaller under the larger root (fixed bodies carry anything and join nothing)
+  const int n = static_cast<int>(bodies_.size());
+  for (int i = 0; i < n; ++i) {
+    parent_[i] = i;
+    tree_size_[i] = 1;
+  }
+  for (const Contact& c : contacts_) {
+    if (bodies_[c.a].fixed || bodies_[c.b].fixed) continue;
+    int a = findRoot(c.a), b = findRoot(c.b);
+    if (a == b) continue;
+    if (tree_size_[a] < tree_size_[b]) std::swap(a, b);
+    parent_[b] = a;
+    tree_size_[a] += tree_size_[b];
+  }
+  // Each root numbers its island, a body touching nothing included; every body takes its root's
+  island_total_ = 0;
+  for (int i = 0; i < n; ++i) {
+    if (awakeMoving(i) && findRoot(i) == i) island_of_[i] = island_total_++;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (awakeMoving(i)) island_of_[i] = island_of_[findRoot(i)];
+  }
+  // Each contact belongs to the island of its moving body (a of the two when both move)
+  contact_island_.resize(contacts_.size());
+  island_count_.assign(static_cast<std::size_t>(island_total_), 0);
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    contact_island_[k] = island_of_[bodies_[c.a].fixed ? c.b : c.a];
+    ++island_count_[static_cast<std::size_t>(contact_island_[k])];
+  }
+  for (const int count : island_count_) {
+    if (count > 0) ++diagnostics_.islands;
+    diagnostics_.largest_island = std::max(diagnostics_.largest_island, count);
+  }
+  if (!settings_.islands && !contacts_.empty()) {
+    diagnostics_.islands = 1;
+    diagnostics_.largest_island = static_cast<int>(contacts_.size());
+  }
+}
+
+void World::groupByIsland(const std::vector<int>& chosen) {
+  group_.resize(chosen.size());
+  if (!settings_.islands) {
+    std::copy(chosen.begin(), chosen.end(), group_.begin());
+    group_start_.assign({0, static_cast<int>(chosen.size())});
+    return;
+  }
+  // Counting sort by island: stable, so each island keeps its contacts in the scene's order
+  group_start_.assign(static_cast<std::size_t>(island_total_) + 1, 0);
+  for (const int k : chosen) ++group_start_[static_cast<std::size_t>(contact_island_[k]) + 1];
+  for (int g = 0; g < island_total_; ++g) group_start_[g + 1] += group_start_[g];
+  group_next_.assign(group_start_.begin(), group_start_.end() - 1);
+  for (const int k : chosen) group_[group_next_[contact_island_[k]]++] = k;
+}
+
+int World::solveIslands(std::vector<ContactBody>& bodies, Solver solver, bool keep_impulses, double h) {
+  int most = 0;
+  for (std::size_t g = 0; g + 1 < group_start_.size(); ++g) {
+    if (group_start_[g] == group_start_[g + 1]) continue;
+    // The island's bodies (a fixed body once per island that touches it) and its contacts, numbered locally
+    island_members_.clear();
+    island_bodies_.clear();
+    island_contacts_.clear();
+    const auto localIndex = [&](int i) {
+      if (local_[i] < 0) {
+        local_[i] = static_cast<int>(island_members_.size());
+        island_members_.push_back(i);
+        island_bodies_.push_back(bodies[i]);
+      }
+      return local_[i];
+    };
+    for (int k = group_start_[g]; k < group_start_[g + 1]; ++k) {
+      island_contacts_.push_back(contacts_[group_[k]]);
+      Contact& c = island_contacts_.back();
+      c.a = localIndex(c.a);
+      c.b = localIndex(c.b);
+    }
+    int taken = 0;
+    if (solver == Solver::Impulses) {
+      taken = settings_.method == ResponseMethod::Simultaneous ? solveSimultaneous(island_bodies_, island_contacts_, settings_)
+                                                               : solveSequential(island_bodies_, island_contacts_, settings_);
+    } else {
+      const std::size_t count = island_members_.size();
+      island_descriptions_.resize(count);
+      island_states_.resize(count);
+      for (std::size_t l = 0; l < count; ++l) {
+        island_descriptions_[l] = bodies_[island_members_[l]];
+        island_states_[l] = states_[island_members_[l]];
+      }
+      island_points_.resize(island_contacts_.size());
+      std::iota(island_points_.begin(), island_points_.end(), 0);
+      taken = resting_solver_->solve(island_bodies_, island_contacts_, island_points_, island_descriptions_,
+                                     island_states_, settings_.gravity, h);
+    }
+    most = std::max(most, taken);
+    // Back to the World: the velocities (solvers change nothing else of a body), the impulses when kept
+    for (std::size_t l = 0; l < island_members_.size(); ++l) {
+      const int i = island_members_[l];
+      bodies[i].v = island_bodies_[l].v;
+      bodies[i].omega = island_bodies_[l].omega;
+      local_[i] = -1;
+    }
+    if (keep_impulses) {
+      for (int k = group_start_[g]; k < group_start_[g + 1]; ++k) {
+        Contact& c = contacts_[group_[k]];
+        const int a = c.a, b = c.b;
+        c = island_contacts_[static_cast<std::size_t>(k - group_start_[g])];
+        c.a = a;
+        c.b = b;
+      }
+    }
+  }
+  return most;
 }
 
 void World::findLevels() {
@@ -555,21 +722,11 @@ void World::propagateShock(double h) {
     }
     if (level_points_.empty()) continue;
     ++diagnostics_.levels;
-    // The solver works on copies: a held body does not feel what the level's solve changes, so
+    // Island by island, on copies: a held body does not feel what the level's solve changes, so
     // its answer is no impulse the bodies exchanged, and the contacts keep the response's
     // impulses (what warm starts the next step)
-    level_contacts_.clear();
-    for (const int index : level_points_) level_contacts_.push_back(contacts_[index]);
-    if (resting_solver_) {
-      level_points_.resize(level_contacts_.size());
-      std::iota(level_points_.begin(), level_points_.end(), 0);
-      diagnostics_.iterations +=
-          resting_solver_->solve(held_, level_contacts_, level_points_, bodies_, states_, settings_.gravity, h);
-    } else {
-      diagnostics_.iterations += settings_.method == ResponseMethod::Simultaneous
-                                     ? solveSimultaneous(held_, level_contacts_, settings_)
-                                     : solveSequential(held_, level_contacts_, settings_);
-    }
+    groupByIsland(level_points_);
+    diagnostics_.iterations += solveIslands(held_, resting_solver_ ? Solver::Resting : Solver::Impulses, false, h);
   }
   // The held bodies' velocities never changed: every velocity is the propagated one
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -589,13 +746,20 @@ void World::solveRestingContacts(double h) {
   }
   if (resting_.empty()) return;  // nothing rests: the solver is not run
   PhaseTimer timer(times_.resting);
-  diagnostics_.iterations +=
-      resting_solver_->solve(contact_bodies_, contacts_, resting_, bodies_, states_, settings_.gravity, h);
+  // A sub-stepping solver moves every body in its one solve: the scene is one system
+  if (resting_solver_->substeps()) {
+    diagnostics_.iterations +=
+        resting_solver_->solve(contact_bodies_, contacts_, resting_, bodies_, states_, settings_.gravity, h);
+    return;
+  }
+  groupByIsland(resting_);
+  diagnostics_.iterations += solveIslands(contact_bodies_, Solver::Resting, true, h);
 }
 
-void World::applyPenaltyForces(std::vector<Contact>& contacts, double h) {
+void World::applyPenaltyForces(const std::vector<int>& chosen, double h) {
   // A force F over the step is the impulse F h, applied at the contact point
-  for (Contact& c : contacts) {
+  for (const int k : chosen) {
+    Contact& c = contacts_[k];
     const Vec3 F = penaltyForce(c.depth, c.v_rel_minus, c.n, settings_.penalty_k, settings_.penalty_d);
     c.j = F.norm() * h;
     applyImpulse(contact_bodies_[c.a], contact_bodies_[c.b], c.p, F * h);
@@ -614,16 +778,16 @@ void World::integrate(double h) {
     largest_travel_ = 0.0;
     for (const int i : bounded_) {
       const BodyState& s = states_[i];
-      motions_[i] = bodies_[i].fixed ? Motion{}
+      motions_[i] = !awakeMoving(i) ? Motion{}
                                      : Motion{s.P / bodies_[i].mass, s.L.isZero() ? Vec3::Zero() : angularVelocity(i)};
       largest_travel_ = std::max(largest_travel_, h * (motions_[i].v.norm() + motions_[i].omega.norm() * radius_[i]));
     }
     for (const int i : bounded_) {
-      if (!bodies_[i].fixed) advance_[i] = sweptStep(i, h);
+      if (awakeMoving(i)) advance_[i] = sweptStep(i, h);
     }
   }
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    if (bodies_[i].fixed) continue;
+    if (bodies_[i].fixed || asleep_[i]) continue;
     // Symplectic Euler: the new velocities move the body over the step
     BodyState& s = states_[i];
     const double t = advance_[i];
@@ -751,6 +915,59 @@ void World::correctPositions(double h) {
   }
 }
 
+void World::wakeTouchedIslands() {
+  if (!settings_.sleeping) return;
+  PhaseTimer timer(times_.narrow_phase);
+  for (const BoxPair& pair : pairs_) {
+    const int sleeper = asleep_[pair.first] ? pair.first : pair.second;
+    const int other = sleeper == pair.first ? pair.second : pair.first;
+    if (!asleep_[sleeper] || !awakeMoving(other)) continue;
+    // Touching, not only near: an awake body resting beside a sleeping pile leaves it asleep
+    const Manifold m = collide(bodies_[sleeper].shape, Pose{states_[sleeper].x, states_[sleeper].q},
+                               bodies_[other].shape, Pose{states_[other].x, states_[other].q});
+    if (m.count > 0) wake(sleeper);
+  }
+}
+
+void World::wake(int i) {
+  // Every body of its island carries the island's label; waking is rare, a pass over the bodies is cheap
+  const int label = sleep_label_[i];
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    if (asleep_[k] && sleep_label_[k] == label) {
+      asleep_[k] = 0;
+      still_time_[k] = 0.0;
+    }
+  }
+}
+
+void World::updateSleep(double h) {
+  if (!settings_.sleeping) return;
+  // Each awake body's time still (the students' rule), and each island's shortest
+  island_still_.assign(static_cast<std::size_t>(island_total_), std::numeric_limits<double>::infinity());
+  const int n = static_cast<int>(bodies_.size());
+  for (int i = 0; i < n; ++i) {
+    if (!awakeMoving(i)) continue;
+    still_time_[i] =
+        sleepTimer(velocity(i), angularVelocity(i), still_time_[i], h, settings_.sleep_linear, settings_.sleep_angular);
+    double& island = island_still_[static_cast<std::size_t>(island_of_[i])];
+    island = std::min(island, still_time_[i]);
+  }
+  // An island whose every body has been still long enough falls asleep at rest, labelled by its root
+  bool fell = false;
+  for (int i = 0; i < n; ++i) {
+    if (!awakeMoving(i) || island_still_[static_cast<std::size_t>(island_of_[i])] < settings_.sleep_time) continue;
+    asleep_[i] = 1;
+    sleep_label_[i] = findRoot(i);
+    states_[i].P = states_[i].L = Vec3::Zero();
+    fell = true;
+  }
+  // Its contacts (every contact of this step had an awake body) warm start it when it wakes
+  if (!fell) return;
+  for (const Contact& c : contacts_) {
+    if (asleep_[c.a] || asleep_[c.b]) sleeping_contacts_.push_back(c);
+  }
+}
+
 void World::computeDiagnostics() {
   PhaseTimer timer(times_.diagnostics);
   Diagnostics& d = diagnostics_;
@@ -766,6 +983,7 @@ void World::computeDiagnostics() {
     d.angular_momentum += s.x.cross(s.P) + s.L;
   }
   d.contacts = static_cast<int>(contacts_.size());
+  d.asleep = static_cast<int>(std::count(asleep_.begin(), asleep_.end(), 1));
   d.colliding = d.resting = 0;
   d.max_penetration = 0.0;
   for (const Contact& c : contacts_) {
