@@ -389,6 +389,8 @@ struct SettledPile {
   int boxes = 0;
   double settle_seconds = NAN;              // simulated time until every box slept (ours)
   double asleep_ms = INFINITY, awake_ms = INFINITY, bullet_ms = NAN;  // fastest window, per step
+  double moving_ms = INFINITY;              // the first 0.5 s from the drop (falling and landing), sleeping on
+  PhaseTimes asleep_phases;                 // ours asleep, per step over every window
   int bullet_asleep = 0;                    // boxes Bullet had put to sleep when timed
   double bullet_settle_seconds = NAN;       // simulated time until Bullet slept them all (from our settled pile)
   Table table{{"scene", "engine", "ms per step", "boxes asleep", "time / ours awake", "time / Bullet's"}};
@@ -427,13 +429,22 @@ SettledPile settledPile(int cols, int layers, int windows, int steps) {
     for (int n = 0; n < steps; ++n) step();
     return 1e3 * clock.seconds() / steps;
   };
+  asleep.resetTimers();
+  const int moving_steps = std::min(steps, static_cast<int>(std::lround(0.5 / kStep)));
   for (int w = 0; w < windows; ++w) {
+    {
+      World moving(scene, sleeping);
+      Stopwatch clock;
+      for (int n = 0; n < moving_steps; ++n) moving.step(kStep);
+      p.moving_ms = std::min(p.moving_ms, 1e3 * clock.seconds() / moving_steps);
+    }
     p.asleep_ms = std::min(p.asleep_ms, window([&] { asleep.step(kStep); }));
     p.awake_ms = std::min(p.awake_ms, window([&] { awake.step(kStep); }));
 #ifdef PHYSLAB_HAVE_BULLET
     p.bullet_ms = std::min(p.bullet_ms, window([&] { bullet.step(kStep); }));
 #endif
   }
+  p.asleep_phases = scaled(asleep.times(), 1.0 / (windows * steps));
 #ifdef PHYSLAB_HAVE_BULLET
   p.bullet_asleep = bullet.asleep();
 #endif
@@ -442,6 +453,8 @@ SettledPile settledPile(int cols, int layers, int windows, int steps) {
   p.table.add({name, "PhysLab sequential, sleeping on", fmt(p.asleep_ms), std::to_string(asleep.diagnostics().asleep),
                ratio(p.asleep_ms, p.awake_ms), ratio(p.asleep_ms, p.bullet_ms)});
   p.table.add({name, "PhysLab sequential, sleeping off", fmt(p.awake_ms), "0", "1", ratio(p.awake_ms, p.bullet_ms)});
+  p.table.add({name + ", while dropping (first " + fmt(moving_steps * kStep) + " s)", "PhysLab sequential, sleeping on",
+               fmt(p.moving_ms), "0", ratio(p.moving_ms, p.awake_ms), "-"});
 #ifdef PHYSLAB_HAVE_BULLET
   p.table.add({name, bench::bulletName() + ", deactivation on (Bullet's defaults)", fmt(p.bullet_ms),
                std::to_string(p.bullet_asleep), ratio(p.bullet_ms, p.awake_ms), "1"});
@@ -522,7 +535,10 @@ int main(int argc, char** argv) {
     std::cout << "ours: every box asleep after " << fmt(pile.settle_seconds) << " s; Bullet, from our settled pile: "
               << (std::isnan(pile.bullet_settle_seconds) ? std::to_string(pile.bullet_asleep) + " boxes asleep after 5 s"
                                                           : "every box asleep after " + fmt(pile.bullet_settle_seconds) + " s")
-              << "\n";
+              << "\nours asleep, per step: broad phase " << fmt(1e3 * pile.asleep_phases.broad_phase) << " ms, narrow phase "
+              << fmt(1e3 * pile.asleep_phases.narrow_phase) << " ms, respond " << fmt(1e3 * pile.asleep_phases.respond)
+              << " ms, integrate " << fmt(1e3 * pile.asleep_phases.integrate) << " ms; sleeping against moving: "
+              << fmt(pile.asleep_ms / pile.moving_ms) << "\n";
     Table drop_table({"what", "sleeping on", "sleeping off", "tolerance"});
     drop_table.add({"bodies asleep when the ball is dropped", std::to_string(drop.asleep_before), "-", "-"});
     drop_table.add({"most moving bodies awake at once after the drop", std::to_string(drop.most_awake), "-",
