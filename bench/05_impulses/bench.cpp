@@ -533,8 +533,12 @@ int main(int argc, char** argv) {
     std::cout << "Lab 5 benchmark: a settled pile, sleeping on and off, beside Bullet with its deactivation, h = 1/60 s\n";
     pile.table.print(std::cout);
     std::cout << "ours: every box asleep after " << fmt(pile.settle_seconds) << " s; Bullet, from our settled pile: "
+#ifdef PHYSLAB_HAVE_BULLET
               << (std::isnan(pile.bullet_settle_seconds) ? std::to_string(pile.bullet_asleep) + " boxes asleep after 5 s"
                                                           : "every box asleep after " + fmt(pile.bullet_settle_seconds) + " s")
+#else
+              << "not installed"
+#endif
               << "\nours asleep, per step: broad phase " << fmt(1e3 * pile.asleep_phases.broad_phase) << " ms, narrow phase "
               << fmt(1e3 * pile.asleep_phases.narrow_phase) << " ms, respond " << fmt(1e3 * pile.asleep_phases.respond)
               << " ms, integrate " << fmt(1e3 * pile.asleep_phases.integrate) << " ms; sleeping against moving: "
