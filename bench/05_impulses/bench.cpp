@@ -1,9 +1,13 @@
-// Lab 5 benchmark: the box rain (boxRain(N, seed): ground plane, four fixed walls of a 2 x 2 m
-// container, N boxes and spheres of 1 kg on a grid above it) at N = 100, 500, 2000, stepped at
-// h = 1/60 s by our World (sequential and simultaneous impulses) and by Bullet's
-// btDiscreteDynamicsWorld in the same run, then Newton's cradle in both. Last, Timewarp
-// (section 9) against the synchronous World and the synchronous sub-stepping on the sparse scene
-// of a fast ball through a row among N drifting spheres.
+// Lab 5 benchmark. First, islands and sleeping (section 12, issue 40): a settled pile of 1024
+// cubes (108 in a quick run) with sleeping on, its step against the same pile awake, against its
+// own first 0.5 s, and against Bullet with its deactivation on (settledPile()); and a ball dropped
+// on one of four sleeping towers against the same run without sleeping (ballDrop()). Then the box
+// rain (boxRain(N, seed): ground plane, four fixed walls of a 2 x 2 m container, N boxes and
+// spheres of 1 kg on a grid above it) at N = 100, 500, 2000, stepped at h = 1/60 s by our World
+// (sequential and simultaneous impulses) and by Bullet's btDiscreteDynamicsWorld in the same run,
+// then Newton's cradle in both. Last, Timewarp (section 9) against the synchronous World and the
+// synchronous sub-stepping on the sparse scene of a fast ball through a row among N drifting
+// spheres.
 //
 // What each side does per step, on the same bodies (shapes, masses, inertias, restitution,
 // friction, initial positions, orientations and velocities, gravity):
