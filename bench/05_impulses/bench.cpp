@@ -1,9 +1,13 @@
-// Lab 5 benchmark: the box rain (boxRain(N, seed): ground plane, four fixed walls of a 2 x 2 m
-// container, N boxes and spheres of 1 kg on a grid above it) at N = 100, 500, 2000, stepped at
-// h = 1/60 s by our World (sequential and simultaneous impulses) and by Bullet's
-// btDiscreteDynamicsWorld in the same run, then Newton's cradle in both. Last, Timewarp
-// (section 9) against the synchronous World and the synchronous sub-stepping on the sparse scene
-// of a fast ball through a row among N drifting spheres.
+// Lab 5 benchmark. First, islands and sleeping (section 12, issue 40): a settled pile of 1024
+// cubes (108 in a quick run) with sleeping on, its step against the same pile awake, against its
+// own first 0.5 s, and against Bullet with its deactivation on (settledPile()); and a ball dropped
+// on one of four sleeping towers against the same run without sleeping (ballDrop()). Then the box
+// rain (boxRain(N, seed): ground plane, four fixed walls of a 2 x 2 m container, N boxes and
+// spheres of 1 kg on a grid above it) at N = 100, 500, 2000, stepped at h = 1/60 s by our World
+// (sequential and simultaneous impulses) and by Bullet's btDiscreteDynamicsWorld in the same run,
+// then Newton's cradle in both. Last, Timewarp (section 9) against the synchronous World and the
+// synchronous sub-stepping on the sparse scene of a fast ball through a row among N drifting
+// spheres.
 //
 // What each side does per step, on the same bodies (shapes, masses, inertias, restitution,
 // friction, initial positions, orientations and velocities, gravity):
@@ -351,6 +355,168 @@ Table timewarpBench(const std::vector<int>& sizes, int windows) {
   return table;
 }
 
+// ----- Islands and sleeping (section 12, issue 40) ---------------------------------------------
+
+constexpr double kCube = 0.1;   // half edge of the piles' cubes [m]
+constexpr double kGap = 0.02;   // between neighbouring columns, and each cube's drop [m]
+
+// The ground plane and a cols x cols grid of columns of `layers` cubes (1 kg, 0.2 m edge, mu 0.5,
+// epsilon `epsilon`), the columns 2 cm apart, each cube 2 cm above the one below, dropped from rest
+// at x0 along x: they land and come to rest within a second.
+void addColumns(Scene& scene, int cols, int layers, double x0, double epsilon) {
+  for (int i = 0; i < cols; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      for (int k = 0; k < layers; ++k) {
+        scene.bodies.push_back(BodyDescription::box(1.0, Vec3::Constant(kCube), epsilon, 0.5));
+        BodyState s;
+        s.x = Vec3(x0 + (2 * kCube + kGap) * i, (2 * kCube + kGap) * j, kCube + kGap + (2 * kCube + kGap) * k);
+        scene.states.push_back(s);
+      }
+    }
+  }
+}
+
+Scene groundOnly() {
+  Scene scene;
+  scene.bodies.push_back(BodyDescription::plane(Vec3::UnitZ(), 0.0, 0.0, 0.5));
+  scene.states.push_back(BodyState{});
+  return scene;
+}
+
+int awakeCount(const World& world) {
+  int awake = 0;
+  for (int i = 0; i < static_cast<int>(world.bodies().size()); ++i) awake += !world.bodies()[i].fixed && !world.asleep(i);
+  return awake;
+}
+
+struct SettledPile {
+  int boxes = 0;
+  double settle_seconds = NAN;              // simulated time until every box slept (ours)
+  double asleep_ms = INFINITY, awake_ms = INFINITY, bullet_ms = NAN;  // fastest window, per step
+  double moving_ms = INFINITY;              // the first 0.5 s from the drop (falling and landing), sleeping on
+  PhaseTimes asleep_phases;                 // ours asleep, per step over every window
+  int bullet_asleep = 0;                    // boxes Bullet had put to sleep when timed
+  double bullet_settle_seconds = NAN;       // simulated time until Bullet slept them all (from our settled pile)
+  Table table{{"scene", "engine", "ms per step", "boxes asleep", "time / ours awake", "time / Bullet's"}};
+};
+
+// The settled pile: cols x cols columns of `layers` cubes dropped with sleeping on until every box
+// sleeps; then that pile's step, timed in three worlds stepped side by side, windows alternating,
+// the fastest counting: ours sleeping (the same World, on), ours awake (a World with sleeping off
+// built from the settled states) and Bullet with its deactivation on, built from the same states
+// and stepped until it has put every box to sleep (or for 5 s) before its windows.
+SettledPile settledPile(int cols, int layers, int windows, int steps) {
+  SettledPile p;
+  Scene scene = groundOnly();
+  addColumns(scene, cols, layers, 0.0, 0.0);
+  p.boxes = cols * cols * layers;
+  Settings sleeping;
+  sleeping.sleeping = true;
+  World asleep(scene, sleeping);
+  const int most = static_cast<int>(std::lround(10.0 / kStep));
+  for (int n = 0; n < most && asleep.diagnostics().asleep < p.boxes; ++n) asleep.step(kStep);
+  if (asleep.diagnostics().asleep == p.boxes) p.settle_seconds = asleep.time();
+  Scene settled = scene;
+  settled.states = asleep.states();
+  World awake(settled, Settings{});
+  for (int n = 0; n < steps; ++n) awake.step(kStep);  // warm-up
+#ifdef PHYSLAB_HAVE_BULLET
+  bench::BulletWorld bullet(settled, Settings{}, true);
+  p.bullet_ms = INFINITY;
+  for (int n = 0; n < static_cast<int>(std::lround(5.0 / kStep)) && bullet.asleep() < p.boxes; ++n) {
+    bullet.step(kStep);
+    if (bullet.asleep() == p.boxes) p.bullet_settle_seconds = (n + 1) * kStep;
+  }
+#endif
+  const auto window = [steps](const auto& step) {
+    Stopwatch clock;
+    for (int n = 0; n < steps; ++n) step();
+    return 1e3 * clock.seconds() / steps;
+  };
+  asleep.resetTimers();
+  const int moving_steps = std::min(steps, static_cast<int>(std::lround(0.5 / kStep)));
+  for (int w = 0; w < windows; ++w) {
+    {
+      World moving(scene, sleeping);
+      Stopwatch clock;
+      for (int n = 0; n < moving_steps; ++n) moving.step(kStep);
+      p.moving_ms = std::min(p.moving_ms, 1e3 * clock.seconds() / moving_steps);
+    }
+    p.asleep_ms = std::min(p.asleep_ms, window([&] { asleep.step(kStep); }));
+    p.awake_ms = std::min(p.awake_ms, window([&] { awake.step(kStep); }));
+#ifdef PHYSLAB_HAVE_BULLET
+    p.bullet_ms = std::min(p.bullet_ms, window([&] { bullet.step(kStep); }));
+#endif
+  }
+  p.asleep_phases = scaled(asleep.times(), 1.0 / (windows * steps));
+#ifdef PHYSLAB_HAVE_BULLET
+  p.bullet_asleep = bullet.asleep();
+#endif
+  const std::string name = "settled pile of " + std::to_string(p.boxes) + " boxes";
+  const auto ratio = [](double a, double b) { return std::isfinite(a) && std::isfinite(b) ? fmt(a / b) : std::string("-"); };
+  p.table.add({name, "PhysLab sequential, sleeping on", fmt(p.asleep_ms), std::to_string(asleep.diagnostics().asleep),
+               ratio(p.asleep_ms, p.awake_ms), ratio(p.asleep_ms, p.bullet_ms)});
+  p.table.add({name, "PhysLab sequential, sleeping off", fmt(p.awake_ms), "0", "1", ratio(p.awake_ms, p.bullet_ms)});
+  p.table.add({name + ", while dropping (first " + fmt(moving_steps * kStep) + " s)", "PhysLab sequential, sleeping on",
+               fmt(p.moving_ms), "0", ratio(p.moving_ms, p.awake_ms), "-"});
+#ifdef PHYSLAB_HAVE_BULLET
+  p.table.add({name, bench::bulletName() + ", deactivation on (Bullet's defaults)", fmt(p.bullet_ms),
+               std::to_string(p.bullet_asleep), ratio(p.bullet_ms, p.awake_ms), "1"});
+#else
+  p.table.add({name, "Bullet", "not installed", "-", "-", "-"});
+#endif
+  return p;
+}
+
+// A ball dropped on one sleeping pile among several: `piles` towers of 5 cubes (epsilon 0.5) 1 m
+// apart, and a ball (1 kg, radius 0.1 m, epsilon 0.5) resting on the ground 3 m away, all asleep
+// after 3 s; the ball is then put 0.5 m above the top of tower `hit` and falls on it for 2 s. The
+// same run with sleeping off (same steps, same setState) is the reference.
+struct BallDrop {
+  int pile_bodies = 5;
+  int most_awake = 0;       // moving bodies awake at once after the drop, sleeping on
+  int asleep_before = 0;    // bodies asleep when the ball was dropped
+  double rebound[2] = {NAN, NAN};  // rebound / drop height, sleeping on and off
+  double apart = 0.0;       // largest distance between a body's final positions in the two runs [m]
+};
+
+BallDrop ballDrop(int piles) {
+  constexpr int kTower = 5, kHit = 1;
+  constexpr double kEpsilon = 0.5, kDrop = 0.5;
+  Scene scene = groundOnly();
+  for (int p = 0; p < piles; ++p) addColumns(scene, 1, kTower, 1.0 * p, kEpsilon);
+  scene.bodies.push_back(BodyDescription::sphere(1.0, 0.1, kEpsilon, 0.5));
+  BodyState rest;
+  rest.x = Vec3(-3.0, 0.0, 0.1);
+  scene.states.push_back(rest);
+  const int ball = static_cast<int>(scene.bodies.size()) - 1;
+  const int top = 1 + kHit * kTower + kTower - 1;
+  BallDrop d;
+  std::vector<BodyState> end[2];
+  for (int run = 0; run < 2; ++run) {
+    Settings settings;
+    settings.sleeping = run == 0;
+    World world(scene, settings);
+    for (int n = 0; n < 180; ++n) world.step(kStep);
+    if (run == 0) d.asleep_before = world.diagnostics().asleep;
+    const double contact = world.states()[top].x.z() + kCube + 0.1;  // the ball's centre touching the top
+    world.setState(ball, BodyState::moving(world.bodies()[ball], Vec3(1.0 * kHit, 0.0, contact + kDrop),
+                                           Quat::Identity(), Vec3::Zero(), Vec3::Zero()));
+    double apex = -INFINITY;
+    bool rising = false;
+    for (int n = 0; n < 120; ++n) {
+      world.step(kStep);
+      if (run == 0) d.most_awake = std::max(d.most_awake, awakeCount(world));
+      rising = rising || world.velocity(ball).z() > 0.0;
+      if (rising) apex = std::max(apex, world.states()[ball].x.z());
+    }
+    d.rebound[run] = (apex - contact) / kDrop;
+    end[run] = world.states();
+  }
+  for (std::size_t i = 0; i < end[0].size(); ++i) d.apart = std::max(d.apart, (end[0][i].x - end[1][i].x).norm());
+  return d;
+}
+
 std::string percent(double part, double whole) { return fmt(100.0 * part / whole, 2) + "%"; }
 
 }  // namespace
@@ -361,12 +527,59 @@ int main(int argc, char** argv) {
         argc, argv, "Lab 5 benchmark: the box rain and Newton's cradle, PhysLab's World against Bullet.");
     const std::vector<int> sizes = options.quick ? std::vector<int>{100, 500} : std::vector<int>{100, 500, 2000};
     const int windows = options.quick ? 2 : 5;
+
+    // Islands and sleeping (issue 40), first: their goal lines print as soon as they are measured
+#ifdef PHYSLAB_HAVE_BULLET
+    bench::useOurPairRules();
+#endif
+    const SettledPile pile = options.quick ? settledPile(6, 3, 3, 20) : settledPile(16, 4, 5, 60);
+    const BallDrop drop = ballDrop(4);
+    std::cout << "Lab 5 benchmark: a settled pile, sleeping on and off, beside Bullet with its deactivation, h = 1/60 s\n";
+    pile.table.print(std::cout);
+    std::cout << "ours: every box asleep after " << fmt(pile.settle_seconds) << " s; Bullet, from our settled pile: "
+#ifdef PHYSLAB_HAVE_BULLET
+              << (std::isnan(pile.bullet_settle_seconds) ? std::to_string(pile.bullet_asleep) + " boxes asleep after 5 s"
+                                                          : "every box asleep after " + fmt(pile.bullet_settle_seconds) + " s")
+#else
+              << "not installed"
+#endif
+              << "\nours asleep, per step: broad phase " << fmt(1e3 * pile.asleep_phases.broad_phase) << " ms, narrow phase "
+              << fmt(1e3 * pile.asleep_phases.narrow_phase) << " ms, respond " << fmt(1e3 * pile.asleep_phases.respond)
+              << " ms, integrate " << fmt(1e3 * pile.asleep_phases.integrate) << " ms; sleeping against moving: "
+              << fmt(pile.asleep_ms / pile.moving_ms) << "\n";
+    Table drop_table({"what", "sleeping on", "sleeping off", "tolerance"});
+    drop_table.add({"bodies asleep when the ball is dropped", std::to_string(drop.asleep_before), "-", "-"});
+    drop_table.add({"most moving bodies awake at once after the drop", std::to_string(drop.most_awake), "-",
+                    "<= " + std::to_string(drop.pile_bodies + 1) + " (the pile and the ball)"});
+    drop_table.add({"ball's rebound / drop height", fmt(drop.rebound[0]), fmt(drop.rebound[1]), "0.025 (10 % of epsilon^2)"});
+    drop_table.add({"largest distance between the two runs' final positions [m]", fmt(drop.apart), "-", "0.01"});
+    std::cout << "\nLab 5 benchmark: a ball dropped on one of 4 sleeping towers of 5 cubes, 2 s, against the same run without sleeping\n";
+    drop_table.print(std::cout);
+    {
+      const std::string at = "settled pile of " + std::to_string(pile.boxes) + " boxes, ";
+      const std::string quick_verdict = "measured by a full run only (a quick run settles " + std::to_string(pile.boxes) + " boxes)";
+      const double share = pile.asleep_ms / pile.awake_ms;
+      std::cout << bench::goalLine(at + "sleeping against awake", fmt(share), "0.05",
+                                   options.quick ? quick_verdict : share <= 0.05 ? "met" : "not met")
+                << "\n";
+      const double against = pile.asleep_ms / pile.bullet_ms;
+      std::cout << bench::goalLine(at + "sleeping against Bullet with deactivation",
+                                   std::isnan(against) ? fmt(pile.asleep_ms) + " ms" : fmt(against),
+                                   std::isnan(against) ? "Bullet's (not installed in this run)" : "1",
+                                   options.quick ? quick_verdict : against <= 1.0 ? "met" : "not met")
+                << "\n";
+      bench::printGoal("ball dropped on one of 4 sleeping towers, most bodies awake at once", std::to_string(drop.most_awake),
+                       "<= " + std::to_string(drop.pile_bodies + 1) + " (that tower and the ball)",
+                       drop.most_awake <= drop.pile_bodies + 1);
+      bench::printGoal("ball dropped on one of 4 sleeping towers, same bounce as without sleeping (rebound ratio; final positions)",
+                       fmt(std::abs(drop.rebound[0] - drop.rebound[1])) + "; " + fmt(drop.apart) + " m", "<= 0.025; <= 0.01 m",
+                       std::abs(drop.rebound[0] - drop.rebound[1]) <= 0.025 && drop.apart <= 0.01);
+    }
     // 3 s of rain at N <= 500 (the last bodies land at about 1.6 s); 1.5 s at N = 2000, where a
     // step costs up to 50 ms and the column (50 m high) is still falling
     const auto stepsFor = [&](int n) { return options.quick ? 20 : (n <= 500 ? 180 : 90); };
 
 #ifdef PHYSLAB_HAVE_BULLET
-    bench::useOurPairRules();
     const std::string bullet = bench::bulletName();
 #endif
     Settings sequential, simultaneous;
@@ -529,6 +742,19 @@ int main(int argc, char** argv) {
           << timewarp_file.rdbuf();
       out << "\nContinuous collision on and off: sequential impulses, h = 1/60 s.\n\n" << continuous_file.rdbuf();
     }
+    const std::string pile_path = pile.table.saveMarkdown(options.out + "/lab05_bench_pile.md");
+    const std::string drop_path = drop_table.saveMarkdown(options.out + "/lab05_bench_drop.md");
+    {
+      std::ifstream pile_file(pile_path), drop_file(drop_path);
+      std::ofstream out(path, std::ios::app);
+      out << "\nA settled pile, sleeping on and off, beside Bullet with its deactivation (fastest of "
+          << (options.quick ? 3 : 5) << " windows; ours asleep after " << fmt(pile.settle_seconds) << " s).\n\n"
+          << pile_file.rdbuf();
+      out << "\nA ball dropped on one of 4 sleeping towers of 5 cubes, 2 s, against the same run without sleeping.\n\n"
+          << drop_file.rdbuf();
+    }
+    std::remove(pile_path.c_str());
+    std::remove(drop_path.c_str());
     std::remove(continuous_path.c_str());
     std::remove(timewarp_path.c_str());
     std::remove(phases_path.c_str());

@@ -1,7 +1,10 @@
-// Lab 6 benchmark: box pyramids (cubePyramid(rows): ground plane, rows (rows + 1) / 2 cubes of
-// 1 kg and 0.2 m edge, 0.02 m apart, every cube on two below) of 55, 210 and 465 cubes (10, 20,
-// 30 rows), stepped for 10 s at h = 1/60 s by our World with the LCP resting-contact solver and
-// by Bullet and ODE in the same run. Reported: wall time per step, the largest drift of any cube
+// Lab 6 benchmark. First, islands (Lab 5, section 12; issue 40): the box rain of 500 for 10 s with
+// PGS, pivoting and Lemke each solving island by island (islandRain()), and the 210- and 465-cube
+// pyramids, one island each, with Settings::islands on and off (pyramidIslands()). Then box
+// pyramids (cubePyramid(rows): ground plane, rows (rows + 1) / 2 cubes of 1 kg and 0.2 m edge,
+// 0.02 m apart, every cube on two below) of 55, 210 and 465 cubes (10, 20, 30 rows), stepped for
+// 10 s at h = 1/60 s by our World with the LCP resting-contact solver and by Bullet and ODE in the
+// same run. Reported: wall time per step, the largest drift of any cube
 // from where it started (the issue's bar: a pyramid stands when no cube moves more than 5 cm in
 // 10 s), and what broke.
 // Then the iteration counts swept on the 210-cube pyramid (cost against drift), and Lab 5's box rain
@@ -672,6 +675,62 @@ std::vector<RainRun> rainRuns(int count, int steps, int windows) {
   return runs;
 }
 
+// ----- Islands (section 12 of Lab 5, issue 40) ------------------------------------------------
+
+// The box rain with an exact solver per island: World(boxRain(count, 5), restingWorldSettings(),
+// LcpContactSolver) stepped for `steps` (10 s in a full run), or until a step fails (LcpFailure:
+// "lost accuracy", a ray, the pivot limit) or `budget` wall seconds are spent. One run per solver:
+// its time per step is that run's mean.
+struct IslandRain {
+  std::string solver;
+  int steps = 0;            // steps solved
+  double per_step = NAN;    // [s]
+  int largest_island = 0;   // most contact points of one island in any step
+  std::string note;         // how it stopped, empty when every step solved
+};
+
+IslandRain islandRain(int count, const std::string& name, const RestingSettings& settings, int steps, double budget) {
+  IslandRain r;
+  r.solver = name;
+  World world(boxRain(count, 5), restingWorldSettings(), std::make_shared<LcpContactSolver>(settings));
+  double spent = 0.0;
+  try {
+    for (; r.steps < steps; ++r.steps) {
+      if (spent > budget) {
+        r.note = "stopped by the " + fmt(budget) + " s budget at t = " + fmt(r.steps * kStep) + " s";
+        break;
+      }
+      Stopwatch clock;
+      world.step(kStep);
+      spent += clock.seconds();
+      r.largest_island = std::max(r.largest_island, world.diagnostics().largest_island);
+    }
+  } catch (const std::exception& e) {
+    r.note = "failed at t = " + fmt((r.steps + 1) * kStep) + " s: " + e.what();
+  }
+  r.per_step = r.steps > 0 ? spent / r.steps : NAN;
+  return r;
+}
+
+// A pyramid of `rows` rows (one island) with Settings::islands on and off, PGS matrix-free 20
+// sweeps: windows of `steps` steps, each a fresh World, on and off alternating after one untimed
+// window of each, the fastest counting. Returns ms per step, on and off.
+std::pair<double, double> pyramidIslands(int rows, int steps, int windows) {
+  const Scene scene = cubePyramid(rows);
+  double best[2] = {INFINITY, INFINITY};
+  for (int w = 0; w <= windows; ++w) {
+    for (int on = 0; on < 2; ++on) {
+      Settings settings = restingWorldSettings();
+      settings.islands = on == 0;
+      World world(scene, settings, std::make_shared<LcpContactSolver>(oursSettings(LcpMethod::Pgs, kIterations, true)));
+      Stopwatch clock;
+      for (int n = 0; n < steps; ++n) world.step(kStep);
+      if (w > 0) best[on] = std::min(best[on], 1e3 * clock.seconds() / steps);
+    }
+  }
+  return {best[0], best[1]};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -687,6 +746,61 @@ int main(int argc, char** argv) {
     [[maybe_unused]] const double peer_budget = options.quick ? 3.0 : 30.0;  // Bullet's and ODE's, when built with them
 
     const double exact_budget = options.quick ? 3.0 : 15.0;
+
+    // Islands (issue 40), first: their goal lines print as soon as they are measured. The box
+    // rain with pivoting and Lemke per island against PGS, then the pyramids (one island) with
+    // islands on and off
+    const int rain_count = options.quick ? 100 : 500;
+    const int island_steps = options.quick ? 20 : 600;
+    const double island_budget = options.quick ? 5.0 : 150.0;
+    std::vector<IslandRain> island_rain;
+    for (const auto& [name, settings] :
+         {std::pair<std::string, RestingSettings>{"PGS matrix-free (cone, 20 sweeps)", oursSettings(LcpMethod::Pgs, kIterations, true)},
+          {"pivoting (no friction)", oursSettings(LcpMethod::Pivoting)},
+          {"Lemke (pyramid, 4 directions)", oursSettings(LcpMethod::Lemke)}}) {
+      island_rain.push_back(islandRain(rain_count, name, settings, island_steps, island_budget));
+      std::cout << "box rain of " << rain_count << ", " << name << " per island: " << island_rain.back().steps << " steps"
+                << (island_rain.back().note.empty() ? "" : ", " + island_rain.back().note) << std::endl;
+    }
+    Table island_rain_table({"bodies", "solver, per island", "steps solved", "of", "ms per step", "time / PGS's",
+                             "largest island [points]", "outcome"});
+    for (const IslandRain& r : island_rain) {
+      island_rain_table.add({std::to_string(rain_count), r.solver, std::to_string(r.steps), std::to_string(island_steps),
+                             fmt(1e3 * r.per_step), fmt(r.per_step / island_rain[0].per_step), std::to_string(r.largest_island),
+                             r.note.empty() ? "every step solved" : r.note});
+    }
+    std::cout << "\nLab 6 benchmark: the box rain of " << rain_count << ", " << island_steps
+              << " steps of 1/60 s, the exact solvers per island (one run each)\n";
+    island_rain_table.print(std::cout);
+    const std::vector<int> island_rows = options.quick ? std::vector<int>{10} : std::vector<int>{20, 30};
+    Table island_table({"cubes", "ms per step, islands on", "off", "on / off"});
+    double worst_island_ratio = 0.0;
+    for (const int r : island_rows) {
+      const auto [on, off] = pyramidIslands(r, options.quick ? 10 : 60, options.quick ? 2 : 3);
+      worst_island_ratio = std::max(worst_island_ratio, on / off);
+      island_table.add({std::to_string(r * (r + 1) / 2), fmt(on), fmt(off), fmt(on / off)});
+    }
+    std::cout << "\nLab 6 benchmark: pyramids (one island), PGS matrix-free 20 sweeps, islands on and off\n";
+    island_table.print(std::cout);
+    std::vector<std::string> island_goals;
+    {
+      const std::string quick_verdict = "measured by a full run only (a quick run takes the rain of 100 for 20 steps)";
+      const IslandRain& pivoting = island_rain[1];
+      const bool every = pivoting.steps == island_steps && pivoting.note.empty();
+      island_goals.push_back(bench::goalLine(
+          "pivoting solves the rain of " + std::to_string(rain_count) + " per island every step for " +
+              fmt(island_steps * kStep) + " s",
+          std::to_string(pivoting.steps) + " of " + std::to_string(island_steps) + " steps" +
+              (pivoting.note.empty() ? "" : " (" + pivoting.note + ")"),
+          "all", options.quick ? quick_verdict : every ? "met" : "not met"));
+      std::string cubes;
+      for (const int r : island_rows) cubes += (cubes.empty() ? "" : " and ") + std::to_string(r * (r + 1) / 2);
+      island_goals.push_back(bench::goalLine("pyramids of " + cubes + " cubes (one island), time islands on / off, largest",
+                                             fmt(worst_island_ratio), "<= 1.03",
+                                             options.quick ? "measured by a full run only (a quick run takes 55 cubes)"
+                                             : worst_island_ratio <= 1.03 ? "met"
+                                                                          : "not met"));
+    }
     std::vector<Engine> engines = {
         {"PhysLab PGS matrix-free (cone, 20 sweeps)", "PhysLab PGS 20 sweeps", "linespoints pt 7", 1.0, ours_budget,
          [](const Scene& s) { return std::make_unique<OurSimulation>(s, oursSettings(LcpMethod::Pgs, kIterations, true)); }},
@@ -953,6 +1067,22 @@ int main(int argc, char** argv) {
       out << "\nThe box rain, " << rain_steps << " steps (fastest window).\n\n" << rain_file.rdbuf();
     }
     std::remove(rain_path.c_str());
+    const std::string islands_path = island_rain_table.saveMarkdown(options.out + "/lab06_bench_islands.md");
+    {
+      std::ifstream rain_file(islands_path);
+      std::ofstream out(path, std::ios::app);
+      out << "\nThe box rain of " << rain_count << ", " << island_steps
+          << " steps, the exact solvers per island (one run each).\n\n" << rain_file.rdbuf();
+    }
+    std::remove(islands_path.c_str());
+    const std::string pyramids_path = island_table.saveMarkdown(options.out + "/lab06_bench_island_pyramids.md");
+    {
+      std::ifstream pyramids_file(pyramids_path);
+      std::ofstream out(path, std::ios::app);
+      out << "\nPyramids (one island), PGS matrix-free 20 sweeps, islands on and off (fastest window).\n\n"
+          << pyramids_file.rdbuf();
+    }
+    std::remove(pyramids_path.c_str());
     const std::string exact_path = exact_table.saveMarkdown(options.out + "/lab06_bench_exact.md");
     {
       std::ifstream exact_file(exact_path);
@@ -1079,6 +1209,7 @@ int main(int argc, char** argv) {
                                           "-iteration step time",
                                       ours, "<= " + fmt(kShareOfBullet), verdict));
     }
+    goals.insert(goals.end(), island_goals.begin(), island_goals.end());
     {
       std::ofstream out(path, std::ios::app);
       out << "\nGoals.\n\n";

@@ -1,8 +1,9 @@
 // Bullet's btDiscreteDynamicsWorld holding one of our Scenes (Labs 5 and 6 benchmarks): the same
 // shapes (spheres, boxes, planes), masses, diagonal inertias, restitution, friction, poses and
 // velocities, with our World's pair rules and Settings where Bullet has a knob (iterations,
-// restitution threshold, gravity), two friction directions per point, sleeping off. Compiled only
-// with Bullet (PHYSLAB_HAVE_BULLET); nothing else needs it.
+// restitution threshold, gravity), two friction directions per point, sleeping off unless asked
+// for (then Bullet's own deactivation with its defaults: see BulletWorld()). Compiled only with
+// Bullet (PHYSLAB_HAVE_BULLET); nothing else needs it.
 #pragma once
 
 #include <algorithm>
@@ -33,10 +34,13 @@ inline btScalar meanFriction(const btCollisionObject* a, const btCollisionObject
 }
 
 // A Bullet world holding the same scene: shapes, masses, diagonal inertias, restitution,
-// friction and initial states taken from our descriptions.
+// friction and initial states taken from our descriptions. Every body has DISABLE_DEACTIVATION
+// unless `deactivation`: then each keeps Bullet's default activation (ACTIVE_TAG) and sleeping
+// thresholds (0.8 m/s, 1 rad/s, for gDeactivationTime = 2 s), and an island all of whose bodies
+// stayed below them sleeps (ISLAND_SLEEPING) until something wakes it.
 class BulletWorld {
  public:
-  BulletWorld(const Scene& scene, const Settings& settings) {
+  BulletWorld(const Scene& scene, const Settings& settings, bool deactivation = false) : deactivation_(deactivation) {
     // A box meeting a plane gets its full manifold at once (Bullet's perturbed multipoint
     // contacts, 3 iterations below 3 points), not one corner per step: by default a box dropped
     // flat lands on a single corner and tumbles, a torque no engine with a face manifold gives
@@ -75,6 +79,12 @@ class BulletWorld {
   Vec3 position(int i) const { return fromBt(bodies_[static_cast<std::size_t>(i)]->getWorldTransform().getOrigin()); }
   Vec3 velocity(int i) const { return fromBt(bodies_[static_cast<std::size_t>(i)]->getLinearVelocity()); }
   int size() const { return static_cast<int>(bodies_.size()); }
+  /// Moving bodies Bullet has put to sleep (ISLAND_SLEEPING).
+  int asleep() const {
+    return static_cast<int>(std::count_if(bodies_.begin(), bodies_.end(), [](const std::unique_ptr<btRigidBody>& b) {
+      return !b->isStaticObject() && b->getActivationState() == ISLAND_SLEEPING;
+    }));
+  }
   /// Body i as our BodyState: x, q, \f$P = m v\f$, \f$L = R I_{body} R^T \omega\f$ (zero momenta when fixed).
   BodyState state(int i) const {
     const std::size_t k = static_cast<std::size_t>(i);
@@ -124,11 +134,12 @@ class BulletWorld {
       rb.setLinearVelocity(toBt(state.P / body.mass));
       rb.setAngularVelocity(toBt(R * I.inverse() * R.transpose() * state.L));
     }
-    rb.setActivationState(DISABLE_DEACTIVATION);
+    if (!deactivation_) rb.setActivationState(DISABLE_DEACTIVATION);
     shapes_.push_back(std::move(shape));
     world_.addRigidBody(&rb);
   }
 
+  bool deactivation_;
   btDefaultCollisionConfiguration config_;
   btCollisionDispatcher dispatcher_{&config_};
   btDbvtBroadphase broadphase_;
