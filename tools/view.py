@@ -35,7 +35,7 @@ THREE_DIR = Path("/usr/share/javascript/three")
 THREE = THREE_DIR / "build" / "three.min.js"
 ORBIT = THREE_DIR / "examples" / "js" / "controls" / "OrbitControls.js"
 MAGIC = b"PHYSLAB-REPLAY"
-VERSION = 2
+VERSION = 3
 KINDS = ("sphere", "box", "capsule", "plane", "convex")
 # In a run's settings: the framework answer did the work (World::describe(), Lab 6's matrix-free
 # sweeps), so the run is not the student's code, whatever build it came from
@@ -94,11 +94,12 @@ def parse_replay(data, path):
     frames = []
     for f in range(frames_n):
         time, _, _, _, contacts = take("<3f2I", f"frame {f}'s time, energies and counts")
-        if version > 1:
-            (flags,) = take("<I", f"frame {f}'s flags")
-            if not flags & 1 and contacts:
-                raise ReplayError(f"replay {path}: frame {f} holds {contacts} contacts but says they were not recorded")
+        flags = take("<I", f"frame {f}'s flags")[0] if version > 1 else 1
+        if not flags & 1 and contacts:
+            raise ReplayError(f"replay {path}: frame {f} holds {contacts} contacts but says they were not recorded")
         poses = take(f"<{7 * bodies_n}f", f"frame {f}'s poses")
+        if version > 2 and flags & 2:  # a byte per body: 1 while it sleeps
+            take(f"<{bodies_n}B", f"frame {f}'s sleeping bodies")
         particles = take(f"<{3 * particles_n}f", f"frame {f}'s particles")
         need(40 * contacts, f"frame {f}'s {contacts} contacts")
         at += 40 * contacts

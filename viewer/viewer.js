@@ -17,7 +17,7 @@
 
   // ---------------------------------------------------------------- replay decoding
   const MAGIC = "PHYSLAB-REPLAY";
-  const VERSION = 2;
+  const VERSION = 3;
 
   function decodeReplay(base64, what) {
     const raw = atob(base64);
@@ -62,11 +62,18 @@
       const frame = { time: f32(), kinetic: f32(), potential: f32(), iterations: u32() };
       const C = u32();
       // A frame whose contacts were left out (a large scene) shows the last recorded ones
-      const recorded = version === 1 || (u32() & 1) !== 0;
+      const flags = version === 1 ? 1 : u32();
+      const recorded = (flags & 1) !== 0;
       if (!recorded && C !== 0) throw new Error(`replay ${what}: frame ${f} holds ${C} contacts but says they were not recorded`);
       frame.contactsFrom = recorded ? f : (f > 0 ? replay.frames[f - 1].contactsFrom : null);
       need(28 * B, `frame ${f}'s poses`);
       frame.poses = new Float32Array(bytes.buffer.slice(at, at + 28 * B)); at += 28 * B;
+      // Version 3, flag bit 1: a byte per body, 1 while it sleeps (Settings::sleeping)
+      frame.asleep = null;
+      if (version > 2 && (flags & 2) !== 0) {
+        need(B, `frame ${f}'s sleeping bodies`);
+        frame.asleep = bytes.slice(at, at + B); at += B;
+      }
       need(12 * P, `frame ${f}'s particles`);
       frame.particles = new Float32Array(bytes.buffer.slice(at, at + 12 * P)); at += 12 * P;
       need(40 * C, `frame ${f}'s ${C} contacts`);
@@ -85,7 +92,7 @@
 
   // ---------------------------------------------------------------- scene building
   const KIND = { Sphere: 0, Box: 1, Capsule: 2, Plane: 3, Convex: 4 };
-  const COLOURS = { fixed: 0x9a9a9a, particle: 0xd8743b, normal: 0xffcc00, edge: 0x202020 };
+  const COLOURS = { fixed: 0x9a9a9a, particle: 0xd8743b, normal: 0xffcc00, edge: 0x202020, asleep: 0xdde8f4 };
   // A moving body's colour, by its index: neighbours in a stack or a row differ. Neither grey
   // (fixed bodies) nor yellow (the contact normals).
   const PALETTE = [0x4e79a7, 0xf28e2b, 0xe15759, 0x76b7b2, 0x59a14f, 0xb07aa1, 0xff9da7, 0x9c755f];
@@ -131,6 +138,23 @@
       mesh.frustumCulled = false;  // r111 culls an InstancedMesh by its geometry's bounds alone
       scene.add(mesh);
       instanced.push({ mesh: mesh, members: g.members, kind: g.kind });
+    }
+    // Sleeping bodies: a pale shell a little larger than the body, per kind one InstancedMesh
+    // whose count is the frame's sleepers (three r111 has no per-instance colour)
+    const sleepers = replay.frames.some((f) => f.asleep !== null);
+    const shells = [];
+    if (sleepers) {
+      for (const kind of [KIND.Box, KIND.Sphere]) {
+        const members = replay.bodies.map((body, i) => i).filter((i) => replay.bodies[i].kind === kind && !replay.bodies[i].fixed);
+        if (members.length === 0) continue;
+        const geometry = kind === KIND.Box ? new THREE.BoxBufferGeometry(2, 2, 2) : new THREE.SphereBufferGeometry(1, 24, 16);
+        const mesh = new THREE.InstancedMesh(geometry, new THREE.MeshBasicMaterial({ color: COLOURS.asleep, transparent: true, opacity: 0.75 }),
+                                             members.length);
+        mesh.frustumCulled = false;
+        mesh.count = 0;
+        scene.add(mesh);
+        shells.push({ mesh: mesh, members: members, kind: kind });
+      }
     }
     // Every box's 12 edges as dark lines, one LineSegments for all (EdgesGeometry of the unit box,
     // posed a frame at a time), so that a stack reads as separate cubes
@@ -233,6 +257,19 @@
           g.mesh.setMatrixAt(k, matrix.compose(position, quaternion, scale));
         });
         g.mesh.instanceMatrix.needsUpdate = true;
+      }
+      for (const shell of shells) {
+        let count = 0;
+        for (const i of shell.members) {
+          if (frame.asleep === null || !frame.asleep[i]) continue;
+          const s = replay.bodies[i].size;
+          pose(frame, i);
+          const grow = 1.04;  // just outside the body, so the shell hides its colour
+          if (shell.kind === KIND.Box) scale.set(grow * s[0], grow * s[1], grow * s[2]); else scale.setScalar(grow * s[0]);
+          shell.mesh.setMatrixAt(count++, matrix.compose(position, quaternion, scale));
+        }
+        shell.mesh.count = count;
+        shell.mesh.instanceMatrix.needsUpdate = true;
       }
       const e = edgeGeometry.attributes.position.array, corner = new THREE.Vector3();
       boxes.forEach((i, k) => {
@@ -472,7 +509,8 @@
         const from = g.contactsFrom === null || g.contactsFrom === at ? "" : ` of t = ${r.frames[g.contactsFrom].time.toFixed(3)} s (contacts recorded on some frames only)`;
         return (replays.length > 1 ? labels[k] + ": " : "") +
           `KE ${g.kinetic.toPrecision(5)} J, PE ${g.potential.toPrecision(5)} J, ${contactsOf(r, g).length} contacts${from}` +
-          `${k === 0 ? ` (deepest ${(1000 * deepest).toFixed(2)} mm)` : ""}, ${g.iterations} iterations`;
+          `${k === 0 ? ` (deepest ${(1000 * deepest).toFixed(2)} mm)` : ""}, ${g.iterations} iterations` +
+          (g.asleep === null ? "" : `, ${g.asleep.reduce((n, a) => n + a, 0)} bodies asleep`);
       }).join("; ");
       drawEnergy($("energy"), plot, f.time);
       render();

@@ -17,6 +17,7 @@ constexpr std::size_t kBodyFixedBytes = 32;
 constexpr std::size_t kFrameFixedBytes = 24;
 constexpr std::size_t kFrameFixedBytesV1 = 20;
 constexpr std::uint32_t kContactsRecorded = 1u;  // bit 0 of a frame's flags
+constexpr std::uint32_t kAsleepRecorded = 2u;    // bit 1: a byte per body follows the poses (version 3)
 constexpr std::size_t kPoseBytes = 28;
 constexpr std::size_t kParticleBytes = 12;
 constexpr std::size_t kContactBytes = 40;
@@ -25,6 +26,7 @@ constexpr std::size_t kContactBytes = 40;
 class ByteWriter {
  public:
   explicit ByteWriter(std::size_t capacity) { bytes_.reserve(capacity); }
+  void u8(std::uint8_t v) { bytes_.push_back(static_cast<char>(v)); }
   void u16(std::uint16_t v) {
     bytes_.push_back(static_cast<char>(v & 0xffu));
     bytes_.push_back(static_cast<char>(v >> 8));
@@ -62,6 +64,7 @@ class ByteReader {
     }
   }
   void skip(std::size_t n) { at_ += n; }
+  std::uint8_t u8() { return static_cast<std::uint8_t>(bytes_[at_++]); }
   std::uint16_t u16() {
     const unsigned b0 = static_cast<unsigned char>(bytes_[at_]), b1 = static_cast<unsigned char>(bytes_[at_ + 1]);
     at_ += 2;
@@ -109,8 +112,9 @@ std::size_t replayBodyBytes(const ReplayBody& body) {
   return kBodyFixedBytes + 4 * body.vertices.size() + 4 * body.triangles.size();
 }
 
-std::size_t replayFrameBytes(std::size_t bodies, std::size_t particles, std::size_t contacts) {
-  return kFrameFixedBytes + kPoseBytes * bodies + kParticleBytes * particles + kContactBytes * contacts;
+std::size_t replayFrameBytes(std::size_t bodies, std::size_t particles, std::size_t contacts, bool asleep) {
+  return kFrameFixedBytes + kPoseBytes * bodies + (asleep ? bodies : 0) + kParticleBytes * particles +
+         kContactBytes * contacts;
 }
 
 std::string encodeReplay(const Replay& replay) {
@@ -150,7 +154,14 @@ std::string encodeReplay(const Replay& replay) {
     for (const ReplayContact& c : frame.contacts) {
       if (c.a >= B || c.b >= B) throw InvalidInput(name + ": a contact names a body that is not there");
     }
-    total += replayFrameBytes(B, P, frame.contacts.size());
+    if (!frame.asleep.empty() && frame.asleep.size() != B) {
+      throw InvalidInput(name + " says of " + std::to_string(frame.asleep.size()) + " bodies whether they sleep, not of " +
+                         std::to_string(B));
+    }
+    for (std::uint8_t a : frame.asleep) {
+      if (a > 1) throw InvalidInput(name + ": a body's asleep is " + std::to_string(a) + ", not 0 or 1");
+    }
+    total += replayFrameBytes(B, P, frame.contacts.size(), !frame.asleep.empty());
   }
 
   ByteWriter out(total);
@@ -178,8 +189,9 @@ std::string encodeReplay(const Replay& replay) {
     out.f32(frame.potential_energy);
     out.u32(frame.iterations);
     out.u32(static_cast<std::uint32_t>(frame.contacts.size()));
-    out.u32(frame.contacts_recorded ? kContactsRecorded : 0u);
+    out.u32((frame.contacts_recorded ? kContactsRecorded : 0u) | (frame.asleep.empty() ? 0u : kAsleepRecorded));
     for (float v : frame.poses) out.f32(v);
+    for (std::uint8_t a : frame.asleep) out.u8(a);
     for (float v : frame.particles) out.f32(v);
     for (const ReplayContact& c : frame.contacts) {
       out.u32(c.a);
@@ -248,13 +260,26 @@ Replay decodeReplay(std::string_view bytes, std::string_view what) {
     frame.potential_energy = in.f32();
     frame.iterations = in.u32();
     const std::uint32_t C = in.u32();
-    if (version > 1) frame.contacts_recorded = (in.u32() & kContactsRecorded) != 0;
+    const std::uint32_t flags = version > 1 ? in.u32() : kContactsRecorded;
+    frame.contacts_recorded = (flags & kContactsRecorded) != 0;
+    const bool asleep = version > 2 && (flags & kAsleepRecorded) != 0;
     if (!frame.contacts_recorded && C != 0) {
       throw InvalidInput(source + ": " + name + " holds " + std::to_string(C) + " contacts but says they were not recorded");
     }
     in.need(kPoseBytes * B, name + "'s poses");
     frame.poses.resize(7 * static_cast<std::size_t>(B));
     for (float& v : frame.poses) v = in.f32();
+    if (asleep) {
+      in.need(B, name + "'s sleeping bodies");
+      frame.asleep.resize(B);
+      for (std::uint8_t& a : frame.asleep) {
+        a = in.u8();
+        if (a > 1) {
+          throw InvalidInput(source + ": " + name + " says a body's asleep is " + std::to_string(a) + " at byte " +
+                             std::to_string(in.at() - 1) + ", not 0 or 1");
+        }
+      }
+    }
     in.need(kParticleBytes * P, name + "'s particles");
     frame.particles.resize(3 * static_cast<std::size_t>(P));
     for (float& v : frame.particles) v = in.f32();
@@ -286,7 +311,8 @@ Replay thinReplay(const Replay& replay, std::size_t max_bytes) {
     std::size_t total = fixed, k = 0;
     for (std::size_t f = 0; f < F; ++f) {
       if (!kept(f, stride)) continue;
-      total += replayFrameBytes(B, P, k++ % contacts_stride == 0 ? replay.frames[f].contacts.size() : 0);
+      total += replayFrameBytes(B, P, k++ % contacts_stride == 0 ? replay.frames[f].contacts.size() : 0,
+                                !replay.frames[f].asleep.empty());
     }
     return total;
   };

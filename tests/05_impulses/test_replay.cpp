@@ -167,8 +167,8 @@ TEST_CASE("replay: a wrong magic or an unknown version is refused, naming it", "
   foreign[0] = 'Q';
   CHECK(replayRefusal(foreign).find("not a PhysLab replay") != std::string::npos);
   CHECK(replayRefusal("").find("not a PhysLab replay") != std::string::npos);
-  bytes[14] = 3;  // version 3, little-endian
-  CHECK(replayRefusal(bytes).find("version 3 at byte 14 is not one this reader knows (1-2)") != std::string::npos);
+  bytes[14] = 4;  // version 4, little-endian
+  CHECK(replayRefusal(bytes).find("version 4 at byte 14 is not one this reader knows (1-3)") != std::string::npos);
   bytes[14] = 0;
   CHECK(replayRefusal(bytes).find("version 0 at byte 14") != std::string::npos);
   CHECK_THROWS_AS(readReplay("physlab_no_such_file.replay"), InvalidInput);
@@ -202,6 +202,55 @@ TEST_CASE("replay: a frame without its contacts survives a round trip; version 1
   CHECK(old.frames[0].contacts_recorded);
   CHECK(old.frames[1].contacts.size() == 1);
   CHECK(old.frames[1].poses == handMadeReplay().frames[1].poses);
+}
+
+TEST_CASE("replay: which bodies sleep survives a round trip and costs a byte a body; version 2 files still read", "[common]") {
+  Replay replay = handMadeReplay();
+  replay.frames[1].asleep = {0, 1, 0};
+  const std::string bytes = encodeReplay(replay);
+  CHECK(bytes.size() == encodeReplay(handMadeReplay()).size() + 3);
+  CHECK(replayFrameBytes(3, 2, 1, true) == 175);
+  const Replay back = decodeReplay(bytes, "test.replay");
+  CHECK(back.frames[0].asleep.empty());
+  CHECK(back.frames[1].asleep == std::vector<std::uint8_t>{0, 1, 0});
+  CHECK(back.frames[1].poses == replay.frames[1].poses);
+  CHECK(back.frames[1].contacts.size() == 1);
+  // The mask follows frame 1's poses (frame 1 from byte 412: 24 fixed bytes, 3 poses of 28)
+  std::string bad = bytes;
+  bad[412 + 24 + 84 + 1] = 2;
+  CHECK(replayRefusal(bad).find("frame 1 says a body's asleep is 2 at byte 521, not 0 or 1") != std::string::npos);
+  CHECK(replayRefusal(bytes.substr(0, 412 + 24 + 84 + 2)).find("frame 1's sleeping bodies") != std::string::npos);
+  // Written wrong: one entry per body, each 0 or 1, or none
+  replay.frames[1].asleep = {0, 1};
+  CHECK_THROWS_WITH(encodeReplay(replay), Catch::Matchers::Contains("says of 2 bodies whether they sleep, not of 3"));
+  replay.frames[1].asleep = {0, 7, 0};
+  CHECK_THROWS_WITH(encodeReplay(replay), Catch::Matchers::Contains("a body's asleep is 7, not 0 or 1"));
+  // A version 2 file (no mask, flag bit 1 unknown to it) reads as before
+  std::string v2 = encodeReplay(handMadeReplay());
+  v2[14] = 2;
+  CHECK(decodeReplay(v2, "v2.replay").frames[1].asleep.empty());
+}
+
+TEST_CASE("replay: a World with sleeping on records which bodies sleep", "[common]") {
+  Settings settings;
+  settings.sleeping = true;
+  World world(bouncingBall(0.0, 0.0), settings);
+  Replay replay = startReplay(world, "a ball at rest");
+  // A ball at rest on the ground: still from the first step, asleep once still for sleep_time
+  for (int n = 0; n < 60; ++n) {
+    world.step(1.0 / 60.0);
+    recordFrame(world, replay, false);
+  }
+  REQUIRE(replay.frames.back().asleep.size() == 2);
+  CHECK(replay.frames.back().asleep[1] == (world.asleep(1) ? 1 : 0));
+  CHECK(world.asleep(1));
+  CHECK(replay.frames.front().asleep == std::vector<std::uint8_t>{0, 0});
+  // Without sleeping nothing is recorded, and the file is as before
+  World awake(bouncingBall(0.0, 0.0));
+  Replay plain = startReplay(awake, "awake");
+  awake.step(1.0 / 60.0);
+  recordFrame(awake, plain);
+  CHECK(plain.frames.back().asleep.empty());
 }
 
 TEST_CASE("replay: a recorded box rain holds a frame per step with the World's poses", "[common]") {

@@ -66,6 +66,7 @@ struct ReplayFrame {
   std::vector<float> particles;        ///< per particle x, y, z, world frame [m]: 3 per particle
   std::vector<ReplayContact> contacts;  ///< this frame's contact points (none when not recorded)
   bool contacts_recorded = true;       ///< false: this frame's contacts were left out to keep a large scene's file small
+  std::vector<std::uint8_t> asleep;    ///< per body 1 while it sleeps (Settings::sleeping), else 0; empty: not recorded (no sleeping)
 };
 
 /// A recorded scene: shapes once, then frames.
@@ -79,20 +80,22 @@ struct Replay {
 };
 
 /// The format's version; readReplay() refuses a newer one.
-/// Version 2 added a frame's flags (contacts recorded or not); version 1 files still read, every
-/// frame's contacts recorded.
-constexpr std::uint16_t kReplayVersion = 2;
+/// Version 2 added a frame's flags (contacts recorded or not), version 3 the sleeping bodies (flag
+/// bit 1: a byte per body after the poses); version 1 and 2 files still read (every frame's
+/// contacts recorded in version 1, no body asleep in either).
+constexpr std::uint16_t kReplayVersion = 3;
 
 /// Bytes of the header: 40 plus the title's and the settings' bytes.
 std::size_t replayHeaderBytes(const Replay& replay);
 /// Bytes of one body's shape: 32 + 12 V + 12 K (V vertices, K triangles).
 std::size_t replayBodyBytes(const ReplayBody& body);
-/// Bytes of one frame: 24 + 28 B + 12 P + 40 C (B bodies, P particles, C contacts).
-std::size_t replayFrameBytes(std::size_t bodies, std::size_t particles, std::size_t contacts);
+/// Bytes of one frame: 24 + 28 B + 12 P + 40 C (B bodies, P particles, C contacts), and B more
+/// when it records which bodies sleep.
+std::size_t replayFrameBytes(std::size_t bodies, std::size_t particles, std::size_t contacts, bool asleep = false);
 
-/// The file's bytes. InvalidInput, naming the frame and field, when a frame's poses or particles
-/// do not match the body and particle counts, a contact or spring names no body or particle, or a
-/// Convex body's arrays are not whole triples.
+/// The file's bytes. InvalidInput, naming the frame and field, when a frame's poses, particles or
+/// sleeping bodies (none or one per body, each 0 or 1) do not match the body and particle counts,
+/// a contact or spring names no body or particle, or a Convex body's arrays are not whole triples.
 std::string encodeReplay(const Replay& replay);
 /// Reads the bytes of a replay file; `what` names the source in messages. InvalidInput naming the
 /// byte offset when the magic is not "PHYSLAB-REPLAY", the version is newer than kReplayVersion,
@@ -135,7 +138,8 @@ ReplayBody replayBody(const Shape& shape, bool fixed);
 Replay startReplay(const World& world, std::string title);
 /// Appends the World's state now as a frame: every body's pose, the last step's contacts
 /// (World::contacts(): point, normal, depth, normal impulse j), the energies and the solver
-/// iterations of World::diagnostics(). Call it after a step (a World not yet stepped has no
+/// iterations of World::diagnostics(), and with Settings::sleeping which bodies sleep (World::asleep()).
+/// Call it after a step (a World not yet stepped has no
 /// diagnostics: zeros); a World that is not recorded pays nothing. With `contacts` false the frame
 /// holds the poses and energies only (ReplayFrame::contacts_recorded false): a scene of hundreds
 /// of bodies records its thousands of contact points on some frames only, and the viewer shows

@@ -39,6 +39,10 @@ void recordFrame(const World& world, Replay& replay, bool contacts) {
       frame.poses.push_back(static_cast<float>(v));
     }
   }
+  if (world.settings().sleeping) {
+    frame.asleep.resize(states.size());
+    for (std::size_t i = 0; i < states.size(); ++i) frame.asleep[i] = world.asleep(static_cast<int>(i)) ? 1 : 0;
+  }
   frame.contacts_recorded = contacts;
   if (!contacts) return;
   frame.contacts.reserve(world.contacts().size());
