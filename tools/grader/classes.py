@@ -33,12 +33,12 @@ def csv_text(text: str) -> str:
     return re.sub(r'[,"\n\r]+', " ", text)[:200]
 
 
-def grade_class(args, kit: Kit, sandboxes: list, out: Path, course) -> dict:
-    """Grades the submissions, len(sandboxes) at a time, with a progress line after each; returns
-    {name: (results.json's data, lab results, seconds)} in the order given."""
+def grade_class(args, kit: Kit, sandboxes: list, out: Path, course) -> None:
+    """Grades the submissions into out/<name>/, len(sandboxes) at a time, with a progress line
+    after each; each folder gets its RECORD, from which write_class() makes the class's tables."""
     paths = [Path(p).absolute() for p in args.submissions]
     waiting = list(reversed(paths))
-    graded, lock = {}, threading.Lock()
+    graded, lock = [], threading.Lock()
     start = time.monotonic()
 
     def worker(sandbox: Sandbox) -> None:
@@ -54,7 +54,7 @@ def grade_class(args, kit: Kit, sandboxes: list, out: Path, course) -> dict:
             seconds = time.monotonic() - began
             write_record(out / path.name, results, seconds)
             with lock:
-                graded[path.name] = (data, results, seconds)
+                graded.append(path.name)
                 done, total = len(graded), len(paths)
                 left = (time.monotonic() - start) / done * (total - done)
                 score = "not graded" if not_graded(data) else f"{data['score']:g}/{data['max_score']:g}"
@@ -66,7 +66,6 @@ def grade_class(args, kit: Kit, sandboxes: list, out: Path, course) -> dict:
         t.start()
     for t in threads:
         t.join()
-    return {p.name: graded[p.name] for p in paths}
 
 
 def shard_of(paths: list, shard) -> list:
