@@ -274,6 +274,40 @@ TEST_CASE("world islands: each island solved on its own gives the whole scene's 
   }
 }
 
+TEST_CASE("world sleeping: the broad phase, sleepers looked up apart, steps the world as every pair does, to the bit", "[common]") {
+  // A rain of 60 bodies in the container (fixed walls) settling, islands falling asleep and being
+  // woken; then one body dropped from 1 m onto the piles. The broad phase gives the incremental
+  // tree only the bodies not asleep and looks each awake one up among the sleepers' boxes: the
+  // same candidates, in the same order, as every pair of bodies (the sleeping pairs skipped)
+  Settings settings;
+  settings.sleeping = true;
+  Settings every_pair = settings;
+  every_pair.use_broad_phase = false;
+  World broad(boxRain(60, 7), settings), all(boxRain(60, 7), every_pair);
+  const int dropped = static_cast<int>(broad.bodies().size()) - 1;
+  int most_asleep = 0, wakes = 0;
+  for (int n = 0; n < 420; ++n) {
+    if (n == 300) {
+      const BodyState above = BodyState::moving(broad.bodies()[dropped], Vec3(0.0, 0.0, 1.0), Quat::Identity(),
+                                                Vec3::Zero(), Vec3::Zero());
+      broad.setState(dropped, above);
+      all.setState(dropped, above);
+    }
+    int asleep = 0;
+    for (int i = 0; i <= dropped; ++i) asleep += broad.asleep(i) ? 1 : 0;
+    broad.step(1.0 / 60.0);
+    all.step(1.0 / 60.0);
+    CAPTURE(n);
+    REQUIRE(broad.diagnostics().asleep == all.diagnostics().asleep);
+    REQUIRE(largestDifference(broad, all) == 0.0);
+    most_asleep = std::max(most_asleep, broad.diagnostics().asleep);
+    // Fewer asleep after the step than before it: an awake body woke an island
+    if (broad.diagnostics().asleep < asleep) ++wakes;
+  }
+  CHECK(most_asleep > 20);
+  CHECK(wakes > 0);
+}
+
 TEST_CASE("world islands and sleeping: bad sleep settings are refused by name, and asleep() checks its index", "[common]") {
   for (const double bad : {-1e-9, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
     CAPTURE(bad);

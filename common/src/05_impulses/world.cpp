@@ -276,8 +276,9 @@ void World::step(double h) {
   requirePositive(h, "step size h");
   // Candidate pairs whose bounding boxes overlap, plus every moving body against every plane
   findCandidatePairs();
-  // A sleeping island that an awake body touches wakes (sleeping on)
-  wakeTouchedIslands();
+  // A sleeping island that an awake body touches wakes (sleeping on); the candidates are found
+  // again with it awake, and it may touch another sleeping island in turn
+  while (wakeTouchedIslands()) findCandidatePairs();
   // Contact manifolds of the candidates with an awake moving body, as contact points
   computeContacts();
   // v_rel at each point with the velocities that brought the bodies together: colliding,
@@ -312,19 +313,67 @@ void World::applyForces(double h) {
   }
 }
 
+void World::listSleepers() {
+  sleepers_changed_ = false;
+  listed_.clear();
+  sleepers_.clear();
+  for (const int i : bounded_) {
+    if (asleep_[i]) {
+      const BodyState& s = states_[i];
+      sleepers_.push_back({aabb(bodies_[i].shape, Pose{s.x, s.q}), 0.0, i});
+    } else {
+      listed_.push_back(i);
+    }
+  }
+  std::sort(sleepers_.begin(), sleepers_.end(), [](const SleeperBox& x, const SleeperBox& y) {
+    return x.box.min.x() < y.box.min.x() || (x.box.min.x() == y.box.min.x() && x.body < y.body);
+  });
+  double reach = -std::numeric_limits<double>::infinity();
+  for (SleeperBox& sleeper : sleepers_) sleeper.reach = reach = std::max(reach, sleeper.box.max.x());
+  // Box k of the broad phase is another body now: it starts again from the listed bodies
+  broad_phase_->clear();
+}
+
+template <class Visit>
+void World::querySleepers(const Aabb& box, Visit&& visit) const {
+  // The entries before the first whose running largest max x reaches box's min x all end short of
+  // it; from there, those that start at or before box's max x
+  auto it = std::partition_point(sleepers_.begin(), sleepers_.end(),
+                                 [&](const SleeperBox& sleeper) { return sleeper.reach < box.min.x(); });
+  for (; it != sleepers_.end() && it->box.min.x() <= box.max.x(); ++it) {
+    if (overlaps(it->box, box)) visit(it->body);
+  }
+}
+
 void World::findCandidatePairs() {
   PhaseTimer timer(times_.broad_phase);
   pairs_.clear();
-  const int n = static_cast<int>(bounded_.size());
-  if (settings_.use_broad_phase && n >= 2) {
+  if (sleepers_changed_) listSleepers();
+  if (settings_.use_broad_phase) {
+    // The bodies not asleep go to the incremental tree; each awake moving one is looked up among
+    // the sleepers' boxes, which stay where they are
+    const int n = static_cast<int>(listed_.size());
     boxes_.resize(n);
     for (int k = 0; k < n; ++k) {
-      const BodyState& s = states_[bounded_[k]];
-      boxes_[k] = aabb(bodies_[bounded_[k]].shape, Pose{s.x, s.q});
+      const BodyState& s = states_[listed_[k]];
+      boxes_[k] = aabb(bodies_[listed_[k]].shape, Pose{s.x, s.q});
     }
-    broad_phase_->findPairs(boxes_, found_);
-    for (const BoxPair& pair : found_) pairs_.push_back({bounded_[pair.first], bounded_[pair.second]});
+    if (n >= 2) {
+      broad_phase_->findPairs(boxes_, found_);
+      for (const BoxPair& pair : found_) pairs_.push_back({listed_[pair.first], listed_[pair.second]});
+    }
+    if (!sleepers_.empty()) {
+      const std::size_t listed_pairs = pairs_.size();
+      for (int k = 0; k < n; ++k) {
+        const int body = listed_[k];
+        if (bodies_[body].fixed) continue;
+        querySleepers(boxes_[k], [&](int sleeper) { pairs_.push_back({std::min(body, sleeper), std::max(body, sleeper)}); });
+      }
+      // In the order of the pairs of every bounded body, as without sleepers
+      if (pairs_.size() > listed_pairs) std::sort(pairs_.begin(), pairs_.end());
+    }
   } else {
+    const int n = static_cast<int>(bounded_.size());
     for (int k = 0; k < n; ++k) {
       for (int l = k + 1; l < n; ++l) pairs_.push_back({bounded_[k], bounded_[l]});
     }
@@ -333,9 +382,10 @@ void World::findCandidatePairs() {
   pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
                               [&](const BoxPair& p) { return bodies_[p.first].fixed && bodies_[p.second].fixed; }),
                pairs_.end());
+  // A sleeping body stands still on a plane that stands still: nothing to find
   for (int plane : planes_) {
     for (int body : bounded_) {
-      if (!bodies_[body].fixed) pairs_.push_back({body, plane});
+      if (awakeMoving(body)) pairs_.push_back({body, plane});
     }
   }
 }
@@ -809,8 +859,9 @@ double World::sweptStep(int i, double h) {
   if (settings_.use_broad_phase && bounded_.size() >= 2) {
     const Vec3 reach = Vec3::Constant(rho + h * motion.omega.norm() * rho + largest_travel_);
     const Vec3 end = s.x + h * motion.v;
-    broad_phase_->query({s.x.cwiseMin(end) - reach, s.x.cwiseMax(end) + reach},
-                        [&](int id) { reachable_.push_back(bounded_[id]); });
+    const Aabb swept{s.x.cwiseMin(end) - reach, s.x.cwiseMax(end) + reach};
+    if (listed_.size() >= 2) broad_phase_->query(swept, [&](int id) { reachable_.push_back(listed_[id]); });
+    querySleepers(swept, [&](int j) { reachable_.push_back(j); });
   } else {
     reachable_ = bounded_;
   }
@@ -915,9 +966,10 @@ void World::correctPositions(double h) {
   }
 }
 
-void World::wakeTouchedIslands() {
-  if (!settings_.sleeping) return;
+bool World::wakeTouchedIslands() {
+  if (!settings_.sleeping) return false;
   PhaseTimer timer(times_.narrow_phase);
+  bool woke = false;
   for (const BoxPair& pair : pairs_) {
     const int sleeper = asleep_[pair.first] ? pair.first : pair.second;
     const int other = sleeper == pair.first ? pair.second : pair.first;
@@ -925,13 +977,18 @@ void World::wakeTouchedIslands() {
     // Touching, not only near: an awake body resting beside a sleeping pile leaves it asleep
     const Manifold m = collide(bodies_[sleeper].shape, Pose{states_[sleeper].x, states_[sleeper].q},
                                bodies_[other].shape, Pose{states_[other].x, states_[other].q});
-    if (m.count > 0) wake(sleeper);
+    if (m.count > 0) {
+      wake(sleeper);
+      woke = true;
+    }
   }
+  return woke;
 }
 
 void World::wake(int i) {
   // Every body of its island carries the island's label; waking is rare, a pass over the bodies is cheap
   const int label = sleep_label_[i];
+  sleepers_changed_ = true;
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     if (asleep_[k] && sleep_label_[k] == label) {
       asleep_[k] = 0;
@@ -963,6 +1020,7 @@ void World::updateSleep(double h) {
   }
   // Its contacts (every contact of this step had an awake body) warm start it when it wakes
   if (!fell) return;
+  sleepers_changed_ = true;
   for (const Contact& c : contacts_) {
     if (asleep_[c.a] || asleep_[c.b]) sleeping_contacts_.push_back(c);
   }
