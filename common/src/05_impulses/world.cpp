@@ -274,7 +274,8 @@ double World::depth(int i, int j) const {
 
 void World::step(double h) {
   requirePositive(h, "step size h");
-  // Candidate pairs whose bounding boxes overlap, plus every moving body against every plane
+  // Candidate pairs whose bounding boxes overlap (not two asleep), plus every awake moving body
+  // against every plane
   findCandidatePairs();
   // A sleeping island that an awake body touches wakes (sleeping on); the candidates are found
   // again with it awake, and it may touch another sleeping island in turn
@@ -367,7 +368,8 @@ void World::findCandidatePairs() {
       for (int k = 0; k < n; ++k) {
         const int body = listed_[k];
         if (bodies_[body].fixed) continue;
-        querySleepers(boxes_[k], [&](int sleeper) { pairs_.push_back({std::min(body, sleeper), std::max(body, sleeper)}); });
+        querySleepers(boxes_[k],
+                      [&](int sleeper) { pairs_.push_back({std::min(body, sleeper), std::max(body, sleeper)}); });
       }
       // In the order of the pairs of every bounded body, as without sleepers
       if (pairs_.size() > listed_pairs) std::sort(pairs_.begin(), pairs_.end());
