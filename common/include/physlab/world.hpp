@@ -478,6 +478,8 @@ class World {
   void integrate(double h);
   // Continuous collision (section 10): how long body i moves in a step of h
   double sweptStep(int i, double h);
+  // Whether the narrow phase found a contact between bodies i and j this step
+  bool touching(int i, int j) const;
   void correctPositions(double h);
   void computeDiagnostics();
   void loadContactBodies();

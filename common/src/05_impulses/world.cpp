@@ -848,6 +848,13 @@ void World::integrate(double h) {
   }
 }
 
+bool World::touching(int i, int j) const {
+  for (const Contact& c : contacts_) {
+    if ((c.a == i && c.b == j) || (c.a == j && c.b == i)) return true;
+  }
+  return false;
+}
+
 double World::sweptStep(int i, double h) {
   const Motion& motion = motions_[i];
   const double rho = radius_[i];
@@ -886,7 +893,19 @@ double World::sweptStep(int i, double h) {
     if ((c - along * d).squaredNorm() > reach * reach) continue;
     const ToiResult toi =
         toiConservativeAdvancement(bodies_[i].shape, pose, motion, bodies_[j].shape, Pose{o.x, o.q}, other, h, kSweepTolerance);
-    if (toi.hit) hits_.push_back(toi.time);
+    if (!toi.hit) continue;
+    if (toi.time > 0.0 || touching(i, j)) {
+      hits_.push_back(toi.time);
+      continue;
+    }
+    // A hit at 0 on a pair the narrow phase found apart: within the sweep's tolerance, but no
+    // contact, so no impulse answers it this step. The gap closes no sooner than gap / (approach
+    // bound), conservative advancement's own bound: that is the hit (none when they part)
+    const DistanceResult gap = distance(bodies_[i].shape, pose, bodies_[j].shape, Pose{o.x, o.q});
+    const Vec3 n = gap.point_a - gap.point_b;
+    if (gap.overlap || !(n.squaredNorm() > 0.0)) continue;
+    const double approach = approachSpeedBound(bodies_[i].shape, motion, bodies_[j].shape, other, n.normalized());
+    if (approach > 0.0) hits_.push_back(std::clamp(gap.distance / approach, std::numeric_limits<double>::min(), h));
   }
   // Nothing in the way: the whole step, without asking
   return hits_.empty() ? h : continuousAdvance(hits_, h, speed, kSweepOverlap);
