@@ -66,6 +66,7 @@ void validateState(const BodyState& state, int i) {
 
 void validateSettings(const Settings& s) {
   if (s.iterations < 1) throw InvalidInput("settings iterations must be at least 1");
+  if (s.shock_response_iterations < 1) throw InvalidInput("settings shock_response_iterations must be at least 1");
   requireNonNegative(s.tolerance, "settings tolerance");
   requireNonNegative(s.restitution_threshold, "settings restitution threshold");
   requireFinite(s.gravity, "settings gravity");
@@ -141,8 +142,9 @@ std::string Settings::toString() const {
       << " broad_phase=" << (use_broad_phase ? "incremental tree" : "all pairs")
       << " position_correction=" << position_correction << " slop=" << slop
       << " correction_sweeps=" << correction_sweeps << " continuous=" << (continuous ? "on" : "off")
-      << " shock_propagation=" << (shock_propagation ? "on" : "off") << " islands=" << (islands ? "on" : "off")
-      << " sleeping=" << (sleeping ? "on" : "off");
+      << " shock_propagation=" << (shock_propagation ? "on" : "off");
+  if (shock_propagation) out << " shock_response_iterations=" << shock_response_iterations;
+  out << " islands=" << (islands ? "on" : "off") << " sleeping=" << (sleeping ? "on" : "off");
   if (sleeping) out << " sleep_linear=" << sleep_linear << " sleep_angular=" << sleep_angular << " sleep_time=" << sleep_time;
   return out.str();
 }
@@ -159,6 +161,13 @@ World::World(Scene scene, Settings settings, std::shared_ptr<RestingContactSolve
       resting_solver_(std::move(resting)) {
   requireSize(static_cast<Index>(states_.size()), static_cast<Index>(bodies_.size()), "world states");
   validateSettings(settings_);
+  // With shock propagation after it, the response stops sooner where the pass solves every point
+  // again (islands resting on a fixed body, without a resting solver: with one, the pass leaves
+  // the colliding points the impulses answered as they were)
+  response_settings_ = settings_;
+  if (shockPropagates() && !resting_solver_) {
+    response_settings_.iterations = std::min(settings_.iterations, settings_.shock_response_iterations);
+  }
   for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) {
     validateBody(bodies_[i], i);
     validateState(states_[i], i);
@@ -545,13 +554,12 @@ void World::respond(double h) {
         applyPenaltyForces(chosen_, h);
       } else {
         groupByIsland(chosen_);
-        diagnostics_.iterations = solveIslands(contact_bodies_, Solver::Impulses, true, h);
+        diagnostics_.iterations = solveIslands(contact_bodies_, Solver::Response, true, h);
       }
     }
   }
   solveRestingContacts(h);
-  if (settings_.shock_propagation && settings_.method != ResponseMethod::Penalty &&
-      !(resting_solver_ && resting_solver_->substeps())) {
+  if (shockPropagates()) {
     PhaseTimer timer(times_.respond);
     propagateShock(h);
   }
@@ -570,6 +578,9 @@ int World::findRoot(int i) {
 
 void World::findIslands() {
   diagnostics_.islands = diagnostics_.largest_island = 0;
+  // Whether any contact has a fixed body: the scene, as one system, rests on one
+  carried_ = std::any_of(contacts_.begin(), contacts_.end(),
+                         [&](const Contact& c) { return bodies_[c.a].fixed || bodies_[c.b].fixed; });
   if (!settings_.islands && !settings_.sleeping) {
     if (!contacts_.empty()) diagnostics_.islands = 1;
     diagnostics_.largest_island = static_cast<int>(contacts_.size());
@@ -601,10 +612,13 @@ void World::findIslands() {
   // Each contact belongs to the island of its moving body (a of the two when both move)
   contact_island_.resize(contacts_.size());
   island_count_.assign(static_cast<std::size_t>(island_total_), 0);
+  island_carried_.assign(static_cast<std::size_t>(island_total_), 0);
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const Contact& c = contacts_[k];
     contact_island_[k] = island_of_[bodies_[c.a].fixed ? c.b : c.a];
     ++island_count_[static_cast<std::size_t>(contact_island_[k])];
+    // An island with a contact on a fixed body rests on it: every body of it has a level
+    if (bodies_[c.a].fixed || bodies_[c.b].fixed) island_carried_[static_cast<std::size_t>(contact_island_[k])] = 1;
   }
   for (const int count : island_count_) {
     if (count > 0) ++diagnostics_.islands;
@@ -654,9 +668,13 @@ int World::solveIslands(std::vector<ContactBody>& bodies, Solver solver, bool ke
       c.b = localIndex(c.b);
     }
     int taken = 0;
-    if (solver == Solver::Impulses) {
-      taken = settings_.method == ResponseMethod::Simultaneous ? solveSimultaneous(island_bodies_, island_contacts_, settings_)
-                                                               : solveSequential(island_bodies_, island_contacts_, settings_);
+    if (solver != Solver::Resting) {
+      // The response stops sooner on an island the shock propagation solves again (one resting on
+      // a fixed body); elsewhere, and for the propagation's own solves, every setting as given
+      const bool carried = settings_.islands ? island_carried_[g] != 0 : carried_;
+      const Settings& with = solver == Solver::Response && carried ? response_settings_ : settings_;
+      taken = settings_.method == ResponseMethod::Simultaneous ? solveSimultaneous(island_bodies_, island_contacts_, with)
+                                                               : solveSequential(island_bodies_, island_contacts_, with);
     } else {
       const std::size_t count = island_members_.size();
       island_descriptions_.resize(count);
