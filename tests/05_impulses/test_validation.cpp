@@ -77,6 +77,12 @@ TEST_CASE("world validation: bad settings, a bad step and mismatched sizes are r
   settings = Settings{};
   settings.correction_sweeps = 0;
   CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("correction sweeps must be at least 1, got 0"));
+  settings = Settings{};
+  settings.shock_response_iterations = 0;
+  CHECK_THROWS_WITH(World(bouncingBall(1.0, 0.5), settings), Contains("shock_response_iterations must be at least 1"));
+  // 1 is the least allowed
+  settings.shock_response_iterations = 1;
+  CHECK_NOTHROW(World(bouncingBall(1.0, 0.5), settings));
   World world(bouncingBall(1.0, 0.5));
   CHECK_THROWS_WITH(world.step(0.0), Contains("step size h"));
   CHECK_THROWS_AS(world.step(std::nan("")), InvalidInput);
@@ -93,8 +99,11 @@ TEST_CASE("world settings: printed with every value", "[common]") {
   out << settings;
   CHECK_THAT(out.str(), Contains("method=simultaneous") && Contains("iterations=17") && Contains("warm_start=on") &&
                             Contains("position_correction=0.2") && Contains("slop=0.0002") &&
-                            Contains("correction_sweeps=8"));
+                            Contains("correction_sweeps=8") && Contains("shock_response_iterations=30"));
   CHECK(out.str() == settings.toString());
+  // The response's limit is printed only where it acts
+  settings.shock_propagation = false;
+  CHECK_THAT(settings.toString(), !Contains("shock_response_iterations"));
 }
 
 TEST_CASE("world: a scene without gravity or contacts skips those phases", "[common]") {
