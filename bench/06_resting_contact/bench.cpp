@@ -787,12 +787,16 @@ int main(int argc, char** argv) {
       const std::string quick_verdict = "measured by a full run only (a quick run takes the rain of 100 for 20 steps)";
       const IslandRain& pivoting = island_rain[1];
       const bool every = pivoting.steps == island_steps && pivoting.note.empty();
+      // A budget that runs out is no failure: the goal is then undecided by this run (a step at
+      // 2000 points costs seconds: the whole 10 s takes the better part of an hour)
+      const bool failed = pivoting.note.rfind("failed", 0) == 0;
       island_goals.push_back(bench::goalLine(
           "pivoting solves the rain of " + std::to_string(rain_count) + " per island every step for " +
               fmt(island_steps * kStep) + " s",
           std::to_string(pivoting.steps) + " of " + std::to_string(island_steps) + " steps" +
               (pivoting.note.empty() ? "" : " (" + pivoting.note + ")"),
-          "all", options.quick ? quick_verdict : every ? "met" : "not met"));
+          "all",
+          options.quick ? quick_verdict : every ? "met" : failed ? "not met" : "not decided (the budget ran out first)"));
       std::string cubes;
       for (const int r : island_rows) cubes += (cubes.empty() ? "" : " and ") + std::to_string(r * (r + 1) / 2);
       island_goals.push_back(bench::goalLine("pyramids of " + cubes + " cubes (one island), time islands on / off, largest",
