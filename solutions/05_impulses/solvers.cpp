@@ -175,9 +175,8 @@ int solveSequential(std::vector<ContactBody>& bodies, std::vector<Contact>& cont
         const double size = inside ? 0.0 : dj_t.norm();
         if (size > 0.0) largest = std::max(largest, dj_t.dot(c.K * dj_t) / size);
       }
-      // Apply the point's normal and friction changes together (none: a point apart and
-      // staying apart, or held exactly, moves nothing; in a settling pile one update in seven)
-      if (!J.isZero(0.0)) c.apply(bodies, J);
+      // Apply the point's normal and friction changes together
+      c.apply(bodies, J);
     }
     // Converged when no point's velocity changed by more than the tolerance in a whole sweep
     if (std::max(largest, std::sqrt(stopped2)) <= settings.tolerance) break;
