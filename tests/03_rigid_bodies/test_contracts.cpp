@@ -45,8 +45,11 @@ TEST_CASE("inertia: point masses of unequal mass obey the parallel-axis theorem"
 TEST_CASE("inertia: a single point mass has no inertia about itself, two make a rod", "[lab03][pts=1][sec=1]") {
   // One point mass (the least the header allows) sits at its own centre of mass: I = 0, up to
   // the round-off of c = m r / m (~1e-16 |r|, squared).
-  const Mat3 single = pointMassInertia(VecX::Constant(1, 2.0), Vec3(1.0, -2.0, 3.0));
-  CHECK(single.norm() < 1e-12);
+  {
+    INFO("one point mass, m = 2 at r = (1, -2, 3): allowed, and its inertia about its own centre is 0");
+    const Mat3 single = pointMassInertia(VecX::Constant(1, 2.0), Vec3(1.0, -2.0, 3.0));
+    CHECK(single.norm() < 1e-12);
+  }
   // Masses 1 at the origin and 3 at (4, 0, 0): c = (3, 0, 0), arms 3 and 1 across x, so
   // I = (1 * 9 + 3 * 1) diag(0, 1, 1), exactly (small integers).
   Mat3X r = Mat3X::Zero(3, 2);
@@ -58,9 +61,12 @@ TEST_CASE("inertia: a single point mass has no inertia about itself, two make a 
 TEST_CASE("forces: the wrench of no force is zero, of one force that force and its moment", "[lab03][pts=1][sec=3]") {
   const Vec3 x(1.0, 0.0, 0.0);
   // An empty list: nothing to sum, an exact zero.
-  const Wrench none = wrenchAbout(x, {});
-  CHECK(none.force.norm() == 0.0);
-  CHECK(none.torque.norm() == 0.0);
+  {
+    INFO("an empty list of forces about x = (1, 0, 0): the wrench is (0, 0, 0), (0, 0, 0)");
+    const Wrench none = wrenchAbout(x, {});
+    CHECK(none.force.norm() == 0.0);
+    CHECK(none.torque.norm() == 0.0);
+  }
   // By hand: (3 z) at x + (0, 2, 0) has moment (0, 2, 0) x (0, 0, 3) = (6, 0, 0); (3 x) at
   // x + (0, 0, 2) has moment (0, 0, 2) x (3, 0, 0) = (0, 6, 0). Small integers: exact.
   const Wrench one = wrenchAbout(x, {AppliedForce{Vec3(1.0, 2.0, 0.0), Vec3(0.0, 0.0, 3.0)}});
