@@ -199,6 +199,8 @@ TEST_CASE("stability: symplectic Euler on a chain breaks at h omega_max = 2", "[
   const SpringNetwork net = freeChain(n, m, k, 0.0);
   const SpringSystem sys(net);
   const double w = topMode(net).first;
+  INFO("a free chain of " << n << " particles, m = " << m << " kg, k = " << k << " N/m: omega_max = " << w
+                          << " rad/s; h = 0.5 / omega_max must stay stable, 3 / omega_max must break");
   const VecX X0 = perturbed(sys, 1e-6);  // small: the linearised modes decide stability
   // Unstable: the energy of the perturbation grows 100-fold within 4000 steps. A stable step
   // keeps it within a bounded factor; an unstable one just past the limit grows exponentially.
@@ -255,13 +257,16 @@ TEST_CASE("implicit: stays bounded at k = 10^6 and h = 1/60", "[lab02][pts=2][se
 }
 
 TEST_CASE("implicit: adds no energy to an unforced undamped network over 1000 steps", "[lab02][pts=2][sec=3]") {
-  SpringNetwork net = makeJelly(3, 1.0, 0.0, 1.0, uniform(50.0, 500.0), 0.0);
+  const double ks = uniform(50.0, 500.0);
+  SpringNetwork net = makeJelly(3, 1.0, 0.0, 1.0, ks, 0.0);
   net.gravity.setZero();
   const SpringSystem sys(net);
   const VecX X0 = perturbed(sys, 0.05);
   const double E0 = sys.energy(X0);
   // One step size for all three methods, inside symplectic Euler's limit h omega_max < 2.
   const double h = 1.0 / topMode(net).first;
+  INFO("a 3 x 3 x 3 jelly, ks = " << ks << " N/m, no damping, no gravity, E0 = " << E0 << " J, h = " << h
+                                  << " s (h omega_max = 1), LDLT");
   VecX X = X0;
   double E = E0;
   bool never_rose = true;
@@ -356,6 +361,8 @@ TEST_CASE("implicit: a damped cloth pinned at two corners comes to rest", "[lab0
   VecX X = perturbed(sys, 0.01);
   const double h = 1e-3, m = 0.3 / 49;
   const int steps = 10000;
+  INFO("a 7 x 7 cloth, m = " << m << " kg a particle, ks = 1000 N/m, kd = 1 N s/m, drag 0.02 N s/m, h = " << h
+                             << " s, " << steps << " steps");
   double E = sys.energy(X), largest_rise = -std::numeric_limits<double>::infinity();
   int first_rise = -1;
   for (int n = 0; n < steps; ++n) {
@@ -385,6 +392,7 @@ TEST_CASE("implicit: spring damping only takes energy out: a damped cloth's ener
   // every one of 300 steps. A damping term of the wrong sign pumps energy in (in the force), or
   // makes the step's matrix indefinite (in its velocity Jacobian, or in A).
   const double kd = uniform(1.0, 2.0), h = 1e-3;
+  INFO("a 7 x 7 cloth of 0.3 kg, ks = 1000 N/m, kd = " << kd << " N s/m, no drag, h = " << h << " s, 300 steps");
   SpringNetwork net = makeCloth(7, 7, 1.0, 1.0, 0.3, 1000.0, kd);
   net.masses[0] = net.masses[6] = std::numeric_limits<double>::infinity();
   const SpringSystem sys(net);
