@@ -578,10 +578,10 @@ int World::findRoot(int i) {
 
 void World::findIslands() {
   diagnostics_.islands = diagnostics_.largest_island = 0;
-  // Whether any contact has a fixed body: the scene, as one system, rests on one
-  carried_ = std::any_of(contacts_.begin(), contacts_.end(),
-                         [&](const Contact& c) { return bodies_[c.a].fixed || bodies_[c.b].fixed; });
   if (!settings_.islands && !settings_.sleeping) {
+    // The scene, as one system, rests on a fixed body when any contact has one
+    carried_ = std::any_of(contacts_.begin(), contacts_.end(),
+                           [&](const Contact& c) { return bodies_[c.a].fixed || bodies_[c.b].fixed; });
     if (!contacts_.empty()) diagnostics_.islands = 1;
     diagnostics_.largest_island = static_cast<int>(contacts_.size());
     return;
@@ -613,12 +613,13 @@ void World::findIslands() {
   contact_island_.resize(contacts_.size());
   island_count_.assign(static_cast<std::size_t>(island_total_), 0);
   island_carried_.assign(static_cast<std::size_t>(island_total_), 0);
+  carried_ = false;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const Contact& c = contacts_[k];
     contact_island_[k] = island_of_[bodies_[c.a].fixed ? c.b : c.a];
     ++island_count_[static_cast<std::size_t>(contact_island_[k])];
     // An island with a contact on a fixed body rests on it: every body of it has a level
-    if (bodies_[c.a].fixed || bodies_[c.b].fixed) island_carried_[static_cast<std::size_t>(contact_island_[k])] = 1;
+    if (bodies_[c.a].fixed || bodies_[c.b].fixed) island_carried_[static_cast<std::size_t>(contact_island_[k])] = carried_ = true;
   }
   for (const int count : island_count_) {
     if (count > 0) ++diagnostics_.islands;
