@@ -415,6 +415,7 @@ TEST_CASE("friction pyramid: the smallest pyramid (k = 3) with a frictionless co
     }
     expected(rows + i, i) = mu(i);
   }
+  INFO("m = 2 contacts, k = 3 directions, mu = (0, " << mu(1) << "): expected an LCP of size " << rows + m);
   const LcpProblem lcp = frictionPyramid(A, b, mu, k);
   REQUIRE(lcp.A.rows() == rows + m);
   REQUIRE(lcp.A.cols() == rows + m);
@@ -522,13 +523,18 @@ TEST_CASE("friction pyramid: a NaN or infinite entry of A or b, and an infinite 
   const int k = 3;
   const MatX A = MatX::Identity(2 + 2 * k, 2 + 2 * k);
   const VecX b = VecX::Constant(2 + 2 * k, -1.0), mu = VecX::Constant(2, 0.5);
+  INFO("m = 2 contacts, k = 3 directions, mu = (0.5, 0.5), A = I (8 x 8), b = -1");
   CHECK(frictionPyramid(A, b, mu, k).A.rows() == 2 + 2 * k + 2);
   MatX bad_A = A;
-  bad_A(static_cast<Index>(uniform(0, 8)), static_cast<Index>(uniform(0, 8))) = kNan;
+  const Index row = static_cast<Index>(uniform(0, 8)), col = static_cast<Index>(uniform(0, 8));
+  CAPTURE(row, col);
+  bad_A(row, col) = kNan;
   CHECK_THROWS_AS(frictionPyramid(bad_A, b, mu, k), InvalidInput);
   CHECK_THROWS_WITH(frictionPyramid(bad_A, b, mu, k), Contains("pyramid A") && Contains("non-finite"));
   VecX bad_b = b;
-  bad_b(static_cast<Index>(uniform(0, 8))) = -kInf;
+  const Index entry = static_cast<Index>(uniform(0, 8));
+  CAPTURE(entry);
+  bad_b(entry) = -kInf;
   CHECK_THROWS_AS(frictionPyramid(A, bad_b, mu, k), InvalidInput);
   CHECK_THROWS_WITH(frictionPyramid(A, bad_b, mu, k), Contains("pyramid b") && Contains("non-finite"));
   CHECK_THROWS_WITH(frictionPyramid(A, b, Vec3(0.5, kInf, 0.0).head<2>(), k), Contains("mu of contact 1"));

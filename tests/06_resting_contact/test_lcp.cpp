@@ -19,18 +19,22 @@ LcpSolution lemke(const MatX& A, const VecX& b, const LcpOptions& options) { ret
 
 // b >= 0 (some entries exactly zero): f = 0 solves it; 1 x 1 with b < 0: f = -b / a.
 void checkOneStepOracles(LcpSolver solve) {
-  const Index n = static_cast<Index>(uniform(2, 8));
-  const MatX A = randomSpd(n, 10.0);
-  VecX b(n);
-  for (Index i = 0; i < n; ++i) b(i) = i == 0 ? 0.0 : uniform(0.0, 2.0);
-  const LcpSolution zero = solve(A, b, {});
-  // Nothing to push: no arithmetic on f at all.
-  CHECK(zero.f == VecX::Zero(n));
-  CHECK(zero.w == b);  // A 0 + b
-  CHECK(zero.residual == 0.0);
-  // b >= 0 needs no pivot, a b_i of exactly 0 (a contact just touching) included
-  CHECK(zero.iterations == 0);
+  {
+    const Index n = static_cast<Index>(uniform(2, 8));
+    const MatX A = randomSpd(n, 10.0);
+    VecX b(n);
+    for (Index i = 0; i < n; ++i) b(i) = i == 0 ? 0.0 : uniform(0.0, 2.0);
+    INFO("n " << n << ", b >= 0: b = (" << b.transpose() << "), expected f = 0, w = b, no pivot");
+    const LcpSolution zero = solve(A, b, {});
+    // Nothing to push: no arithmetic on f at all.
+    CHECK(zero.f == VecX::Zero(n));
+    CHECK(zero.w == b);  // A 0 + b
+    CHECK(zero.residual == 0.0);
+    // b >= 0 needs no pivot, a b_i of exactly 0 (a contact just touching) included
+    CHECK(zero.iterations == 0);
+  }
   const double a = uniform(0.1, 10.0), b1 = -uniform(0.1, 10.0);
+  INFO("1 x 1: a = " << a << ", b = " << b1 << ", expected f = -b / a = " << -b1 / a);
   const LcpSolution one = solve(MatX::Constant(1, 1, a), VecX::Constant(1, b1), {});
   // One division: exact in binary floating point.
   CHECK(one.f(0) == -b1 / a);
@@ -43,11 +47,15 @@ void checkOneStepOracles(LcpSolver solve) {
 void checkTwoByTwo(LcpSolver solve) {
   MatX A(2, 2);
   A << 2.0, 1.0, 1.0, 2.0;
-  const LcpSolution one = solve(A, VecX((VecX(2) << -1.0, 1.0).finished()), {});
-  // A handful of operations on small integers: a few ulps at most.
-  CHECK(std::abs(one.f(0) - 0.5) <= 4e-16);
-  CHECK(one.f(1) == 0.0);  // a free contact's force is never touched
-  CHECK(std::abs(one.w(1) - 1.5) <= 4e-16);
+  {
+    INFO("A = [[2, 1], [1, 2]], b = (-1, 1): expected f = (1/2, 0), w = (0, 3/2)");
+    const LcpSolution one = solve(A, VecX((VecX(2) << -1.0, 1.0).finished()), {});
+    // A handful of operations on small integers: a few ulps at most.
+    CHECK(std::abs(one.f(0) - 0.5) <= 4e-16);
+    CHECK(one.f(1) == 0.0);  // a free contact's force is never touched
+    CHECK(std::abs(one.w(1) - 1.5) <= 4e-16);
+  }
+  INFO("A = [[2, 1], [1, 2]], b = (-3, -3): expected f = (1, 1), w = 0");
   const LcpSolution both = solve(A, VecX::Constant(2, -3.0), {});
   CHECK((both.f - VecX::Ones(2)).cwiseAbs().maxCoeff() <= 4e-16);
   CHECK(both.w.cwiseAbs().maxCoeff() <= 1e-15);
@@ -56,9 +64,10 @@ void checkTwoByTwo(LcpSolver solve) {
 // A planted LCP on an SPD (unique solution) or P-matrix: the solver must return f* itself.
 void checkPlanted(LcpSolver solve, const PlantedLcp& p, double cond) {
   const Index n = p.A.rows();
-  const LcpSolution s = solve(p.A, p.b, {});
   INFO("n " << n << ", cond " << cond << ", active " << p.active << ", free " << p.free << ", degenerate "
-            << p.degenerate << ", pivots " << s.iterations << ", |f - f*| " << (s.f - p.f).cwiseAbs().maxCoeff());
+            << p.degenerate << ", planted f* = (" << p.f.transpose() << ")");
+  const LcpSolution s = solve(p.A, p.b, {});
+  INFO("pivots " << s.iterations << ", |f - f*| " << (s.f - p.f).cwiseAbs().maxCoeff());
   REQUIRE(s.f.size() == n);
   REQUIRE(s.w.size() == n);
   // Backward-stable pivoting: error of order eps * cond(A) * |f*| per pivot, with margin
@@ -119,8 +128,10 @@ DuplicatedContacts duplicatedContacts() {
 
 void checkDuplicated(LcpSolver solve) {
   const DuplicatedContacts s = duplicatedContacts();
+  INFO(s.A.rows() << " contacts on 6 dofs, some rows repeated (A singular PSD: only w and J^T f are unique), "
+       "expected w = (" << s.w.transpose() << ")");
   const LcpSolution r = solve(s.A, s.b, {});
-  INFO(s.A.rows() << " contacts on 6 dofs, pivots " << r.iterations);
+  INFO("pivots " << r.iterations << ", w = (" << r.w.transpose() << ")");
   // The planted f is one of many: compare only what is unique. A and J are O(1), but random
   // contact directions in 6-D are at times nearly dependent (clamped blocks with condition up
   // to ~1e7): 1e-8 is round-off times that, while a wrong answer is off by O(1).
@@ -241,6 +252,7 @@ TEST_CASE("pivoting and lemke: a heavy box on a light one is held exactly, where
   LcpOptions few;
   few.max_iterations = 10;
   few.tolerance = 0.0;
+  INFO("two point masses, the upper 100 times the lower: expected f = (" << s.f.transpose() << "), w = 0");
   const LcpSolution piv = solveLcpPivoting(s.A, s.b), lem = solveLcpLemke(s.A, s.b), pgs = solveLcpPgs(s.A, s.b, few);
   const double weight = s.f(0);
   const double error_pivoting = (piv.f - s.f).cwiseAbs().maxCoeff() / weight;
@@ -346,6 +358,7 @@ TEST_CASE("lemke: ties that the ratio and the first column of B^-1 leave are bro
     MatX A(3, 3);
     A << 1.0, -1.0, 1.0, -2.0, 0.0, 0.0, -2.0, 1.0, -1.0;
     const VecX b = (VecX(3) << -1.0, 1.0, 1.0).finished();
+    INFO("A = [[1, -1, 1], [-2, 0, 0], [-2, 1, -1]], b = (-1, 1, 1): expected 3 pivots, f = (0, 0, 1), w = (0, 1, 0)");
     const LcpSolution s = solveLcpLemke(A, b);
     CHECK(s.iterations == 3);
     // Thirds and their multiples, a few operations each: a few ulps
@@ -361,6 +374,7 @@ TEST_CASE("lemke: ties that the ratio and the first column of B^-1 leave are bro
     MatX A(3, 3);
     A << 1.0, 0.0, 0.0, 0.0, 2.0, 1.0, 0.0, 3.0, 2.0;
     const VecX b = (VecX(3) << -2.0, -1.0, -1.0).finished();
+    INFO("A = [[1, 0, 0], [0, 2, 1], [0, 3, 2]], b = (-2, -1, -1): expected 5 pivots, f = (2, 1/2, 0), w = (0, 0, 1/2)");
     const LcpSolution s = solveLcpLemke(A, b);
     CHECK(s.iterations == 5);
     // Halves and small integers: a few ulps

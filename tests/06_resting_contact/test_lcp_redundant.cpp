@@ -76,8 +76,10 @@ void checkRedundant(LcpSolver solve, const RedundantLcp& p, double impulse) {
   // on impulses of size m g h ~ 0.1
   const std::vector<VecX> oracle = complementarySolutions(p.A, p.b, 1e-9);
   REQUIRE(!oracle.empty());
+  INFO("n " << n << " contacts, rank of A " << Eigen::FullPivLU<MatX>(p.A).rank() << ", weight impulse m g h = " << impulse
+            << ", the oracle's w = (" << (p.A * oracle.front() + p.b).transpose() << ")");
   const LcpSolution s = solve(p.A, p.b, {});
-  INFO("n " << n << ", rank " << Eigen::FullPivLU<MatX>(p.A).rank() << ", pivots " << s.iterations);
+  INFO("pivots " << s.iterations);
   REQUIRE(s.f.size() == n);
   REQUIRE(s.w.size() == n);
   CHECK(s.f.minCoeff() >= 0.0);  // the contract clamps round-off
@@ -184,8 +186,10 @@ void checkPyramid(int rows, const VecX& m) {
   const double g = 9.81, h = 1.0 / 60.0;
   const RedundantLcp p = cubePyramidLcp(rows, 0.1, 0.22, m, g, h);
   const Index n = p.b.size();
+  INFO("a pyramid of " << rows << " rows, n " << n << " contacts, masses (" << m.transpose()
+       << ") kg: expected w = 0 and each cube's J^T f = (0, 0, m g h, 0, 0, 0)");
   const LcpSolution s = solveLcpLemke(p.A, p.b);
-  INFO("rows " << rows << ", n " << n << ", pivots " << s.iterations);
+  INFO("pivots " << s.iterations);
   REQUIRE(s.f.size() == n);
   CHECK(s.f.minCoeff() >= 0.0);
   // Impulses of order m g h ~ 0.2 summed down the rows, entries of A of order 1 / m: the

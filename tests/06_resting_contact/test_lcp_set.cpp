@@ -49,8 +49,9 @@ void checkMurty(LcpSolver solve, long extra) {
     const PlantedMurty m = murtyExample(n);
     LcpOptions options;
     options.max_iterations = 1 << 11;  // past 10 n: the pivots grow like 2^n here
+    INFO("Murty's example, n " << n << ": b = (" << m.b.transpose() << "), expected f = (" << m.f.transpose() << ")");
     const LcpSolution s = solve(m.A, m.b, options);
-    INFO("n " << n << ", pivots " << s.iterations);
+    INFO("pivots " << s.iterations);
     CHECK(s.iterations == (1l << n) - 1 + extra);
     // Integers below 2^12 on a triangular matrix: every operation is exact
     CHECK((s.f - m.f).cwiseAbs().maxCoeff() == 0.0);
@@ -69,8 +70,9 @@ void checkAgainstOracle(LcpSolver solve, const MatX& A, const VecX& b) {
   // Entries O(1), condition up to 100: a feasible basis is feasible by far more than 1e-9
   const std::vector<VecX> oracle = complementarySolutions(A, b, 1e-9);
   REQUIRE(oracle.size() == 1);
+  INFO("n " << n << ", b = (" << b.transpose() << "), the oracle's f = (" << oracle[0].transpose() << ")");
   const LcpSolution s = solve(A, b, {});
-  INFO("n " << n << ", pivots " << s.iterations << ", |f - oracle| " << (s.f - oracle[0]).cwiseAbs().maxCoeff());
+  INFO("pivots " << s.iterations << ", |f - oracle| " << (s.f - oracle[0]).cwiseAbs().maxCoeff());
   // Both are backward stable on condition <= 100 and |f| <= 10: a few hundred ulps of |f|
   CHECK((s.f - oracle[0]).cwiseAbs().maxCoeff() <= 1e-11 * std::max(1.0, oracle[0].cwiseAbs().maxCoeff()));
   checkReport(A, b, s, 1e-11);
@@ -95,23 +97,30 @@ void checkPMatrices(LcpSolver solve) {
 // Degenerate problems: ties in the ratio test and contacts with f = w = 0 at the answer.
 void checkDegenerate(LcpSolver solve) {
   // A cyclic P-matrix with b = -e: every row ties for the first pivot; f = e / 3, w = 0
-  MatX C(3, 3);
-  C << 1.0, 2.0, 0.0, 0.0, 1.0, 2.0, 2.0, 0.0, 1.0;
-  const LcpSolution cyclic = solve(C, -VecX::Ones(3), {});
-  CHECK((cyclic.f - VecX::Constant(3, 1.0 / 3.0)).cwiseAbs().maxCoeff() <= 4e-16);  // thirds: an ulp or two
-  checkReport(C, -VecX::Ones(3), cyclic, 1e-15);
+  {
+    MatX C(3, 3);
+    C << 1.0, 2.0, 0.0, 0.0, 1.0, 2.0, 2.0, 0.0, 1.0;
+    INFO("A = [[1, 2, 0], [0, 1, 2], [2, 0, 1]], b = (-1, -1, -1): expected f = (1/3, 1/3, 1/3), w = 0");
+    const LcpSolution cyclic = solve(C, -VecX::Ones(3), {});
+    CHECK((cyclic.f - VecX::Constant(3, 1.0 / 3.0)).cwiseAbs().maxCoeff() <= 4e-16);  // thirds: an ulp or two
+    checkReport(C, -VecX::Ones(3), cyclic, 1e-15);
+  }
   // Two identical contacts, b equal: the two ratios tie exactly; any split of f_0 + f_1 = 1
-  MatX D(2, 2);
-  D << 1.0, 1.0, 1.0, 1.0;
-  const LcpSolution twin = solve(D, -VecX::Ones(2), {});
-  CHECK(std::abs(twin.f.sum() - 1.0) <= 4e-16);  // sums and quotients of ones
-  checkReport(D, -VecX::Ones(2), twin, 4e-16);
+  {
+    MatX D(2, 2);
+    D << 1.0, 1.0, 1.0, 1.0;
+    INFO("A = [[1, 1], [1, 1]], b = (-1, -1): expected f_0 + f_1 = 1, w = 0");
+    const LcpSolution twin = solve(D, -VecX::Ones(2), {});
+    CHECK(std::abs(twin.f.sum() - 1.0) <= 4e-16);  // sums and quotients of ones
+    checkReport(D, -VecX::Ones(2), twin, 4e-16);
+  }
   // b with zeros: contacts just touching (w = 0 with f = 0 allowed) tie at step 0
   for (int trial = 0; trial < 10; ++trial) {
     const Index n = static_cast<Index>(uniform(2, 9));
     const MatX A = randomSpd(n, 10.0);
     VecX b(n);
     for (Index i = 0; i < n; ++i) b(i) = i % 2 == 0 ? 0.0 : -uniform(0.5, 1.5);
+    INFO("n " << n << ", b with zeros: b = (" << b.transpose() << ")");
     checkReport(A, b, solve(A, b, {}), 1e-12);  // condition 10, O(1) entries: round-off
   }
   // Planted: every contact degenerate (f* = w* = 0, so b = 0) but one active pair
@@ -122,6 +131,7 @@ void checkDegenerate(LcpSolver solve) {
     f(0) = uniform(0.5, 1.5);
     f(n - 1) = uniform(0.5, 1.5);
     VecX b = -A * f;  // w* = 0 everywhere: every other contact is degenerate
+    INFO("n " << n << ", every contact degenerate but two: planted f* = (" << f.transpose() << "), w* = 0");
     const LcpSolution s = solve(A, b, {});
     CHECK((s.f - f).cwiseAbs().maxCoeff() <= 1e-12);  // SPD: unique; condition 10
     checkReport(A, b, s, 1e-12);
@@ -131,12 +141,15 @@ void checkDegenerate(LcpSolver solve) {
 // Positive semidefinite and singular, yet solvable: w is unique (A f is), f is not.
 void checkPsdSingular(LcpSolver solve) {
   // Fixed: A = [[1, -1], [-1, 1]], b = (-1, 1): w = 0 for f_0 - f_1 = 1, e.g. f = (1, 0)
-  MatX A(2, 2);
-  A << 1.0, -1.0, -1.0, 1.0;
-  const VecX b = (VecX(2) << -1.0, 1.0).finished();
-  const LcpSolution fixed = solve(A, b, {});
-  CHECK(std::abs(fixed.f(0) - fixed.f(1) - 1.0) <= 4e-16);  // integers
-  checkReport(A, b, fixed, 4e-16);
+  {
+    MatX A(2, 2);
+    A << 1.0, -1.0, -1.0, 1.0;
+    const VecX b = (VecX(2) << -1.0, 1.0).finished();
+    INFO("A = [[1, -1], [-1, 1]], b = (-1, 1): expected f_0 - f_1 = 1, w = 0");
+    const LcpSolution fixed = solve(A, b, {});
+    CHECK(std::abs(fixed.f(0) - fixed.f(1) - 1.0) <= 4e-16);  // integers
+    checkReport(A, b, fixed, 4e-16);
+  }
   // Fixed: two rank-2 problems of that kind (below) where such a tie goes the wrong way by the
   // last bit unless it is taken within round-off: the reference without it ended the first on
   // a singular A_CC (pivoting) and the second on a false ray (Lemke)
@@ -167,8 +180,8 @@ void checkPsdSingular(LcpSolver solve) {
       for (Index j = 0; j < r; ++j) B(i, j) = uniform(-1.0, 1.0);
     }
     const PlantedLcp p = plantSolution(B * B.transpose());
+    INFO("A of rank " << r << " of " << n << ", expected the unique w = (" << p.w.transpose() << ")");
     const LcpSolution s = solve(p.A, p.b, {});
-    INFO("rank " << r << " of " << n);
     // Random rows in r dimensions are at times nearly dependent: round-off times a clamped
     // block's condition (up to ~1e6 here), while a wrong answer is off by O(1)
     CHECK((s.w - p.w).cwiseAbs().maxCoeff() <= 1e-8);

@@ -114,6 +114,7 @@ TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and all
   const VecX mu = VecX::Constant(n / 3, 0.5);
   // The same options for every solver: LcpOptions' contract, "both tolerances must be >= 0"
   auto refusedByAll = [&](const LcpOptions& options, const std::string& words) {
+    INFO("n " << n << ", tolerance " << options.tolerance << ", pivot_tolerance " << options.pivot_tolerance);
     CHECK_THROWS_AS(solveLcpPivoting(A, b, options), InvalidInput);
     CHECK_THROWS_WITH(solveLcpPivoting(A, b, options), Contains(words));
     CHECK_THROWS_AS(solveLcpLemke(A, b, options), InvalidInput);
@@ -135,6 +136,8 @@ TEST_CASE("every solver refuses a negative tolerance or pivot_tolerance, and all
   options = LcpOptions{};
   options.tolerance = 0.0;
   options.pivot_tolerance = 0.0;
+  INFO("tolerance 0 and pivot_tolerance 0 are allowed; then A = [[2, 1, 0], [1, 2, 0], [0, 0, 4]], b = (-1, 1, -2): "
+       "expected f = (1/2, 0, 1/2), w = (0, 3/2, 0)");
   CHECK_NOTHROW(solveLcpPgs(A, b, options));
   MatX H(3, 3);
   H << 2.0, 1.0, 0.0, 1.0, 2.0, 0.0, 0.0, 0.0, 4.0;
@@ -162,6 +165,7 @@ TEST_CASE("every solver takes an empty LCP (n = 0): empty f and w, no pivot, res
   // past the end of an empty vector
   const MatX A(0, 0);
   const VecX b(0);
+  INFO("n = 0: A is 0 x 0, b and mu are empty; expected empty f and w, 0 pivots, residual 0");
   const LcpSolution piv = solveLcpPivoting(A, b), lem = solveLcpLemke(A, b), pgs = solveLcpPgs(A, b);
   const LcpSolution cone = solveLcpPgsCone(A, b, VecX(0));
   for (const LcpSolution* s : {&piv, &lem, &pgs, &cone}) {

@@ -249,7 +249,11 @@ TEST_CASE("soft step: a soft contact rings at its frequency and decays as implic
 
 TEST_CASE("soft step: a box on the ground comes to rest on its springs' sag, carrying Mg", "[lab06][pts=2][sec=9]") {
   const SoftStepSettings settings;
-  World world = softWorld(restingBox(uniform(-M_PI, M_PI)), settings);
+  const double yaw = uniform(-M_PI, M_PI);
+  INFO("a 2 kg box (half extents 0.3, 0.2, 0.1 m) on the ground at yaw " << yaw << " rad, soft step defaults ("
+       << settings.substeps << " substeps, " << settings.contact_hertz << " Hz, damping ratio " << settings.damping_ratio
+       << "), 180 steps");
+  World world = softWorld(restingBox(yaw), settings);
   for (int n = 0; n < 180; ++n) world.step(kSoftH);
   REQUIRE(world.contacts().size() == 4);
   const double M = world.bodies()[1].mass;
@@ -278,6 +282,8 @@ TEST_CASE("soft step: 10 stacked cubes stand at 16 sweeps a step, where plain PG
   // The soft step's default: 8 substeps of one soft and one relax sweep each
   const SoftStepSettings settings;
   REQUIRE(settings.substeps * (settings.solve_iterations + settings.relax_iterations) == 16);
+  INFO("10 cubes of 0.2 m stacked, 600 steps: the soft step's defaults (" << settings.substeps << " substeps, "
+       << settings.contact_hertz << " Hz) against PGS at 16 sweeps with and without shock propagation");
   World soft = softWorld(scene, settings);
   RestingSettings pgs;
   pgs.lcp.max_iterations = 16;

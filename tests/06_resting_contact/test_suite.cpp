@@ -44,6 +44,8 @@ TEST_CASE("textbook scenes, resting contact: a 100:1 heavy box stays on a light 
 TEST_CASE("textbook scenes, resting contact: a stack of 10 cubes stands still for 10 s", "[lab06][pts=2][sec=1][sec=2][sec=5][sec=6][sec=7][sec=8]") {
   // Three runs: as it is, then every cube shifted by up to 1 nm (a swaying stack goes anywhere
   // from there; one that stands goes nowhere in any of them)
+  INFO("the suite's stack of 10 cubes, default RestingSettings (" << lcpMethodName(RestingSettings{}.method) << ", "
+       << RestingSettings{}.lcp.max_iterations << " sweeps), 10 s at 60 Hz, 3 runs: expected sway <= 1 mm, sinking <= 1 cm");
   const std::vector<SpreadMeasure> spread = runSuiteSceneShaken("stack of 10 cubes", [](const Scene& scene) {
     return std::make_unique<WorldEngine>(
         World(scene, restingWorldSettings(), std::make_shared<LcpContactSolver>(RestingSettings{})));
@@ -68,6 +70,8 @@ TEST_CASE("textbook scenes, resting contact: the stack of 10 stands still withou
   converged.lcp.max_iterations = 300;
   Settings unpropagated = restingWorldSettings();
   unpropagated.shock_propagation = false;
+  INFO("the suite's stack of 10 cubes, " << lcpMethodName(converged.method) << " at 300 sweeps, no shock propagation, "
+       "10 s at 60 Hz, 3 runs: expected sway <= 5 cm, sinking <= 1 cm");
   const std::vector<SpreadMeasure> spread = runSuiteSceneShaken("stack of 10 cubes", [&](const Scene& scene) {
     return std::make_unique<WorldEngine>(World(scene, unpropagated, std::make_shared<LcpContactSolver>(converged)));
   }, 3);
