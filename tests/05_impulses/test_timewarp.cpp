@@ -250,6 +250,8 @@ TEST_CASE("timewarp: a fast ball through a row hits each sphere at the hand-comp
     TimewarpSettings settings;
     settings.max_step = 1.0;
     settings.max_travel = 0.05;
+    INFO("a ball at 4 m/s through a row of 5 spheres 0.3 m apart, " << background
+         << " background spheres, max_step 1 s, max_travel 0.05 m: expected 5 events, the first at 0.2 s");
     TimewarpWorld world(spheres, states, settings);
     world.run(1.0);
     const std::vector<TimewarpEvent>& events = world.events();
@@ -281,6 +283,8 @@ TEST_CASE("timewarp: events are resolved in time order, match an event-driven or
     TimewarpSettings settings;
     settings.max_step = uniform(0.05, 0.5);
     settings.max_travel = uniform(0.02, 0.2);
+    INFO("trial " << trial << ": a gas of 6 spheres, max_step " << settings.max_step << " s, max_travel "
+         << settings.max_travel << " m, run to 1 s");
     TimewarpWorld world(spheres, states, settings);
     const Vec3 P0 = momentumOf(world, spheres);
     const double E0 = energyOf(world, spheres);
@@ -315,6 +319,7 @@ TEST_CASE("timewarp: a rollback takes only the bodies that depend on the collidi
   TimewarpSettings settings;
   settings.max_step = 1.0;
   settings.max_travel = 0.1;  // the slow spheres step 1 s at a time, the ball 0.048 s
+  INFO("the chain scene twice, 10 m apart (bodies 0-2 and 3-5), max_step 1 s, max_travel 0.1 m, run to 2 s");
   TimewarpWorld world(spheres, states, settings);
   world.run(2.0);
   // By hand, in each group (offset 0 or 3), the rollbacks in the order they happen:
@@ -391,6 +396,7 @@ TEST_CASE("timewarp: no body is ever behind one it has met", "[lab05][pts=1][sec
     TimewarpSettings settings;
     settings.max_step = 1.0;
     settings.max_travel = uniform(0.5, 2.0);
+    INFO("trial " << trial << ": a dense gas of 20 spheres, max_step 1 s, max_travel " << settings.max_travel << " m, run to 2 s");
     TimewarpWorld world(spheres, states, settings);
     world.run(2.0);
     rollbacks += world.stats().rollbacks;
@@ -430,17 +436,25 @@ TEST_CASE("timewarp: degenerate scenes: none, one, touching and separating, equa
   left.v = Vec3(-1, 0, 0);
   right.x = Vec3(0.2, 0, 0);
   right.v = Vec3(1, 0, 0);
-  TimewarpWorld apart({TimewarpSphere{}, TimewarpSphere{}}, {left, right});
-  apart.run(1.0);
-  CHECK(apart.events().empty());
-  CHECK(apart.state(1).x.isApprox(Vec3(1.2, 0, 0), 1e-15));
+  {
+    INFO("two 1 kg spheres of radius 0.1 m at x = 0 and 0.2 m (touching), separating at 1 m/s each: "
+         "expected no event, sphere 1 at x = 1.2 m after 1 s");
+    TimewarpWorld apart({TimewarpSphere{}, TimewarpSphere{}}, {left, right});
+    apart.run(1.0);
+    CHECK(apart.events().empty());
+    CHECK(apart.state(1).x.isApprox(Vec3(1.2, 0, 0), 1e-15));
+  }
   // Touching at t = 0 and approaching: a collision at exactly 0
   left.v = Vec3(1, 0, 0);
   right.v = Vec3(-1, 0, 0);
-  TimewarpWorld touching({TimewarpSphere{}, TimewarpSphere{}}, {left, right});
-  touching.run(1.0);
-  REQUIRE(touching.events().size() == 1);
-  CHECK(touching.events()[0].t == 0.0);
+  {
+    INFO("two 1 kg spheres of radius 0.1 m at x = 0 and 0.2 m (touching), approaching at 1 m/s each: "
+         "expected one event, at t = 0");
+    TimewarpWorld touching({TimewarpSphere{}, TimewarpSphere{}}, {left, right});
+    touching.run(1.0);
+    REQUIRE(touching.events().size() == 1);
+    CHECK(touching.events()[0].t == 0.0);
+  }
   // Two pairs that collide at the same time, 0.4 s (gap 0.4 m closed at 1 m/s), with the second
   // pair listed first: both resolved, equal times
   std::vector<SphereState> four(4);
@@ -451,6 +465,7 @@ TEST_CASE("timewarp: degenerate scenes: none, one, touching and separating, equa
   four[2].x = Vec3(0, 0, 0);
   four[2].v = Vec3(1, 0, 0);
   four[3].x = Vec3(0.6, 0, 0);
+  INFO("two pairs of spheres of radius 0.1 m, 0.6 m apart, closing at 1 m/s: expected two events, both at t = 0.4 s");
   TimewarpWorld pairs(std::vector<TimewarpSphere>(4), four);
   pairs.run(1.0);
   REQUIRE(pairs.events().size() == 2);
@@ -489,6 +504,7 @@ TEST_CASE("timewarp: bad input is refused, naming it", "[lab05][pts=1][sec=9]") 
   std::vector<TimewarpSphere> spheres;
   std::vector<SphereState> states;
   fastBallThroughRow(3, 0.1, 2.0, 0, 1u, spheres, states);
+  INFO("a valid scene (a ball at 2 m/s through a row of 3 spheres 0.1 m apart), run to 0.5 s, then to 0.25 s and NaN");
   TimewarpWorld world(spheres, states);
   world.run(0.5);
   CHECK_THROWS_WITH(world.run(0.25), Contains("t_end"));
