@@ -99,7 +99,7 @@ TEST_CASE("world settings: printed with every value", "[common]") {
   out << settings;
   CHECK_THAT(out.str(), Contains("method=simultaneous") && Contains("iterations=17") && Contains("warm_start=on") &&
                             Contains("position_correction=0.2") && Contains("slop=0.0002") &&
-                            Contains("correction_sweeps=8") && Contains("shock_response_iterations=30"));
+                            Contains("correction_sweeps=8") && Contains("shock_response_iterations=20"));
   CHECK(out.str() == settings.toString());
   // The response's limit is printed only where it acts
   settings.shock_propagation = false;

@@ -40,8 +40,9 @@
 /// positions and orientations only: no velocity, so no kinetic energy.
 /// A step sees only where bodies are at its start and end, so a body fast against its size can
 /// pass through another between two steps (tunnelling). With Settings::continuous the integrate
-/// phase first sweeps each fast body (its points may move more than its inner radius) over
-/// the step against the other bodies with Lab 4's conservative advancement, and moves it only
+/// phase first sweeps each fast body over the step (its points may move, against another body's,
+/// more than the two inner radii combined) against the bodies it is fast against with Lab 4's
+/// conservative advancement, and moves it only
 /// until just into the first one it would hit (continuousAdvance(), section 10): the next step
 /// finds that contact and answers it. Slow bodies cost one comparison each.
 /// The respond phase solves each contact island (the moving bodies joined through contacts) on its
@@ -129,9 +130,10 @@ struct Settings {
   double position_correction = 0.2;   ///< impulse methods: fraction of each point's overlap beyond the slop removed per step by moving and turning the bodies, in [0, 1] (0: off)
   double slop = 0.0002;               ///< overlap the position correction leaves alone [m]
   int correction_sweeps = 8;          ///< Gauss-Seidel sweeps of the position correction over the points, alternately forward and backward, >= 1
-  /// Continuous collision (section 10): a body whose points may move more than its inner radius
-  /// in a step is swept against the other bodies (not the planes: a half-space cannot be passed
-  /// through) and stopped just into the first it would hit, continuousAdvance()
+  /// Continuous collision (section 10): a body whose points may move, against another body's,
+  /// more than the two inner radii combined in a step is swept against it (not against the
+  /// planes: a half-space cannot be passed through) and stopped just into the first body it
+  /// would hit, continuousAdvance()
   bool continuous = true;
   /// Shock propagation (section 11): after the response, the contacts are solved once more level
   /// by level up from the fixed bodies (level 1 touches a fixed body, level 2 touches level 1, ...),
@@ -143,9 +145,9 @@ struct Settings {
   /// (at most `iterations`) on an island that rests on a fixed body (the whole scene when islands
   /// are off and any body rests on one): the propagation solves each of its points again, level
   /// by level, from the response's impulses, so the response need not converge by itself
-  /// (section 11: on the box rain of 100, 30 in place of 50 takes a fifth off the step, and the
+  /// (section 11: on the box rain of 100, 20 in place of 50 takes a sixth off the step, and the
   /// contact suite's measures all hold). Islands in flight keep `iterations`. >= 1
-  int shock_response_iterations = 30;
+  int shock_response_iterations = 20;
   /// Contact islands (section 12): each step the moving bodies connected through contacts (fixed
   /// bodies and planes join none) are grouped by union-find, and the response, the resting-contact
   /// solver and the shock propagation solve each island's contacts on their own, in the order the

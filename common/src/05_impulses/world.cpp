@@ -31,11 +31,12 @@ class PhaseTimer {
 
 bool isPlane(const BodyDescription& body) { return std::holds_alternative<Plane>(body.shape); }
 
-// Continuous collision (section 10): a body is fast when its points may move more than its
-// inner radius in a step. A slower one, passing through another body, overlaps it at some step
-// (their overlap along the path is at least twice its inner radius deep), where the narrow
-// phase finds it
-constexpr double kFastFraction = 1.0;
+// Continuous collision (section 10): a pair is fast when their points may move apart or together
+// by more than their inner radii combined in a step (Lab 4's sampling bound). A slower pair,
+// passing through each other, overlaps at some step before their centres pass, where the narrow
+// phase finds it and pushes them back the way they came. A body is swept when its points may move
+// more than its own inner radius: of a fast pair one body always may (the two travels add up to
+// more than the two radii), and its sweep takes the pair
 // The sweep stops this close to the body it would hit [m] (conservative advancement's tolerance)
 constexpr double kSweepTolerance = 1e-4;
 // ... and a stopped body moves on into it by this much, above the tolerance, so that the next
@@ -878,7 +879,7 @@ double World::sweptStep(int i, double h) {
   const Motion& motion = motions_[i];
   const double rho = radius_[i];
   const double speed = motion.v.norm() + motion.omega.norm() * rho;
-  if (!(speed * h > kFastFraction * inner_[i])) return h;
+  if (!(speed * h > inner_[i])) return h;
   // The bodies the sweep may reach (planes: none can be passed): with the broad phase, those
   // whose box at the step's start is within the largest travel of any body of the box the sweep
   // covers; without it, every body
@@ -902,7 +903,7 @@ double World::sweptStep(int i, double h) {
     // Slow against this one (bodies falling together): the narrow phase finds any overlap of theirs
     const double turning = h * (motion.omega.norm() * rho + other.omega.norm() * radius_[j]);
     const Vec3 d = h * (motion.v - other.v);
-    if (!(d.norm() + turning > kFastFraction * inner_[i])) continue;
+    if (!(d.norm() + turning > inner_[i] + inner_[j])) continue;
     // Out of reach: the other centre, seen from this one moving relative to it, stays farther from
     // the swept segment than both bounding radii and the turning of both
     const BodyState& o = states_[j];
