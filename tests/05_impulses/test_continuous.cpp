@@ -63,6 +63,31 @@ Shot shotAtBox(double speed, double x0, double y0, bool continuous) {
   return shot;
 }
 
+// Two 10 cm balls (radius 5 cm, e = 1) meeting head-on along x, each at `speed`, the left one
+// from -x0 and the right one from +x0, no gravity, 1 s at 60 Hz, continuous collision on. Returns
+// the left ball's largest x less the right ball's smallest x at the end of any step, and the
+// left ball's velocity at the end: a pair that passed through each other ends with the left ball
+// on the right, moving on to the right.
+std::pair<double, double> headOn(double speed, double x0) {
+  Scene scene;
+  for (const double side : {-1.0, 1.0}) {
+    scene.bodies.push_back(BodyDescription::sphere(1.0, 0.05, 1.0, 0.0));
+    BodyState ball;
+    ball.x = Vec3(side * x0, 0.0, 0.0);
+    ball.P = Vec3(-side * speed, 0.0, 0.0);
+    scene.states.push_back(ball);
+  }
+  Settings settings;
+  settings.gravity = Vec3::Zero();
+  World world(scene, settings);
+  double crossed = -kMiss;
+  for (int step = 0; step < 60; ++step) {
+    world.step(kStep);
+    crossed = std::max(crossed, world.states()[0].x.x() - world.states()[1].x.x());
+  }
+  return {crossed, world.states()[0].P.x()};
+}
+
 }  // namespace
 
 TEST_CASE("continuous advance: hand cases at every end of the contract", "[lab05][pts=2][sec=10]") {
@@ -158,4 +183,29 @@ TEST_CASE("continuous collision: a 5 cm sphere shot at a 20 cm box at 10, 40 and
     if (std::abs(y0) < 0.075 && shotAtBox(40.0, x0, y0, false).largest_x > 0.1) ++through_without;
   }
   CHECK(through_without == 8);
+}
+
+TEST_CASE("continuous collision: two balls meeting head-on bounce back at every speed, below, at and far above the bound the pair is swept from", "[lab05][pts=1][sec=2][sec=3][sec=4][sec=5][sec=10]") {
+  // A pair is swept when the two move more than their inner radii combined against each other in
+  // a step (0.1 m here): slower, the first step that ends with them overlapping ends before their
+  // centres pass, and the impulse sends them back (e = 1: each leaves at its own speed). Speeds
+  // each of 2.95 m/s (0.098 m a step against each other: not swept), 3.05 (0.102: swept) and
+  // 30 m/s (1 m a step: every start's steps land on both sides of the other ball). 8 fixed starts
+  // 1.23 cm apart (the gap at the last step before contact takes every value across a step) and 8
+  // seeded ones.
+  std::vector<double> starts;
+  for (int k = 0; k < 8; ++k) starts.push_back(0.5 + 0.0123 * k);
+  for (int k = 0; k < 8; ++k) starts.push_back(uniform(0.5, 1.0));
+  for (const double speed : {2.95, 3.05, 30.0}) {
+    for (const double x0 : starts) {
+      INFO("two balls of radius 0.05 m, e = 1, from -" << x0 << " and +" << x0 << " m at " << speed
+           << " m/s each, 1 s: expected the left one never past the right one, and leaving at -" << speed << " m/s");
+      const auto [crossed, v_left] = headOn(speed, x0);
+      CAPTURE(crossed, v_left);
+      // The centres never cross (passing through would put the left one 0.1 m or more beyond)
+      CHECK(crossed < 0.0);
+      // e = 1 head-on between equal masses: the velocities swap; 1e-9 of round-off over the steps
+      CHECK(v_left == Approx(-speed).epsilon(1e-9));
+    }
+  }
 }
