@@ -145,7 +145,7 @@ struct Settings {
   /// (at most `iterations`) on an island that rests on a fixed body (the whole scene when islands
   /// are off and any body rests on one): the propagation solves each of its points again, level
   /// by level, from the response's impulses, so the response need not converge by itself
-  /// (section 11: on the box rain of 100, 20 in place of 50 takes a sixth off the step, and the
+  /// (section 11: on the box rain of 100, 20 in place of 30 takes a sixth off the step, and the
   /// contact suite's measures all hold). Islands in flight keep `iterations`. >= 1
   int shock_response_iterations = 20;
   /// Contact islands (section 12): each step the moving bodies connected through contacts (fixed
