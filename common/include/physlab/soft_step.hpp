@@ -134,9 +134,9 @@ struct SoftStepSettings {
 /// the friction impulse then shrunk onto the new disc: relaxing takes back the spring's push, and
 /// friction was solved by the soft sweep); the sweeps visit the contact pairs from the top down
 /// (SoftStepSettings::top_down), each pair's points together, its two bodies' velocities held in
-/// local copies meanwhile (as Box2D solves a manifold). The substep's last sweep gathers the next
-/// warm start per body as it leaves each point, so that no pass of its own reads the points again.
-/// After the substeps, a colliding
+/// local copies meanwhile (as Box2D solves a manifold). A substep's impulses add up to the change
+/// they made to its bodies' velocities, so the next warm start is taken per body from that change,
+/// and no pass reads the points for it. After the substeps, a colliding
 /// point (Contact::kind) with \f$\epsilon > 0\f$ that was pushed gets one restitution update towards
 /// \f$v_{rel}^+ = -\epsilon\, v_{rel}^-\f$. Reuses its buffers: no allocation once they have grown.
 class SoftStepSolver : public RestingContactSolver {
@@ -217,11 +217,9 @@ class SoftStepSolver : public RestingContactSolver {
       apply(A, B, A.inv_mass, B.inv_mass, change, first);
     }
   };
-  // What a sweep does at its end with a point's impulses: nothing, or, in the substep's closing
-  // sweep, add them to the step's totals and (but after the last substep) gather them into
-  // the next substep's warm start
-  enum class Closing { None, Totals, TotalsAndWarmStart };
-  void sweep(double h_s, bool relax, Closing closing);
+  // One sweep over the points; the substep's closing sweep (`closing`) also adds each point's
+  // impulses to the step's totals
+  void sweep(double h_s, bool relax, bool closing);
   template <int>
   friend struct remote::Access;  // in a grade, solve() runs in the worker: the state crosses with it
 

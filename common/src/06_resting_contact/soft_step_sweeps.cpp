@@ -95,24 +95,26 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   }
 
   // The substeps: gravity and the warm start (the last substep's impulses again), soft sweeps,
-  // positions, relax sweeps. The first warm start is last step's impulses; the later ones are
-  // gathered per body by the substep's closing sweep, while it has each point at hand
+  // positions, relax sweeps. The first warm start is last step's impulses, gathered per body
+  // from the points. A substep's impulses add up to the change they made to its bodies'
+  // velocities, so each later warm start is that change, taken per body (the velocity at the
+  // substep's end less the one before its warm start), with no second pass over the points
   const Vec3 dv = h_s * gravity;
   warm_.assign(bodies.size(), Velocity{});
-  for (Point& pt : points_) pt.apply(motion_[pt.a], motion_[pt.b], pt.lambda, 0);
+  for (const Point& pt : points_) pt.apply(warm_[pt.a], warm_[pt.b], motion_[pt.a].inv_mass, motion_[pt.b].inv_mass, pt.lambda);
   const int sweeps = settings_.solve_iterations + settings_.relax_iterations;
   for (int step = 0; step < n; ++step) {
     for (std::size_t i = 0; i < motion_.size(); ++i) {
       Motion& body = motion_[i];
       if (body.inv_mass > 0.0) body.v += dv;
-      body.v += warm_[i].v;
-      body.omega += warm_[i].omega;
-      warm_[i] = Velocity{};
+      const Velocity warm = warm_[i];
+      warm_[i] = {-body.v, -body.omega};
+      body.v += warm.v;
+      body.omega += warm.omega;
     }
-    const Closing closing = step + 1 < n ? Closing::TotalsAndWarmStart : Closing::Totals;
     for (int i = 0; i < sweeps; ++i) {
       const bool relax = i >= settings_.solve_iterations;
-      sweep(h_s, relax, i + 1 == sweeps ? closing : Closing::None);
+      sweep(h_s, relax, i + 1 == sweeps);
       if (i + 1 != settings_.solve_iterations) continue;
       for (std::size_t j = 0; j < motion_.size(); ++j) {
         Motion& body = motion_[j];
@@ -122,6 +124,10 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
         body.dtheta += h_s * body.omega;
         dq_[j] = exponentialUpdate(dq_[j], body.omega, h_s);
       }
+    }
+    for (std::size_t i = 0; i < motion_.size(); ++i) {
+      warm_[i].v += motion_[i].v;
+      warm_[i].omega += motion_[i].omega;
     }
   }
 
@@ -155,8 +161,8 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 // impulse onto the new disc: it takes back the normal push, friction was solved by the soft
 // sweep). A pair's points come together: its two bodies' motion is read once, updated in local
 // copies and written back once. The substep's closing sweep adds each point's final impulses to
-// the step's and, but for the last substep, to its bodies' next warm start
-void SoftStepSolver::sweep(double h_s, bool relax, SoftStepSolver::Closing closing) {
+// the step's
+void SoftStepSolver::sweep(double h_s, bool relax, bool closing) {
   for (std::size_t k = 0; k < points_.size();) {
     const std::size_t a = points_[k].a, b = points_[k].b;
     Motion A = motion_[a], B = motion_[b];
@@ -180,11 +186,7 @@ void SoftStepSolver::sweep(double h_s, bool relax, SoftStepSolver::Closing closi
         pt.apply(A, B, Vec3(0.0, lambda_T(0) - pt.lambda(1), lambda_T(1) - pt.lambda(2)), 1);
         pt.lambda.tail<2>() = lambda_T;
       }
-      if (closing == Closing::None) continue;
-      pt.addToStep();
-      if (closing == Closing::TotalsAndWarmStart) {
-        pt.apply(warm_[a], warm_[b], A.inv_mass, B.inv_mass, pt.lambda);
-      }
+      if (closing) pt.addToStep();
     }
     motion_[a] = A;
     motion_[b] = B;
