@@ -22,7 +22,7 @@ from .gradescope import cmd_gradescope
 from .hints import hint_problems, tag_problems
 from .kit import Kit
 from .objects import refusals_ahead
-from .report import failure_outputs, gradescope_json, not_graded, report, summary_line, write_outputs
+from .report import failure_outputs, gradescope_json, not_graded, report, summary_line, test_line, write_outputs
 from .runner import Deadline, list_tests, run_cases
 from .sandbox import Sandbox, make_private
 from .submission import submission_problems
@@ -63,8 +63,19 @@ def cmd_run(args) -> int:
         results.append(common)
     for slot in sandbox.slots:
         (scratch / f"home-{slot}").mkdir()
+    # Each test's line as soon as its batch ends (the student's loop sees its first results
+    # while the rest run); the report after them leaves the passes out
+    live = args.expect != "fail"
+    labels = {id(t): f"lab {r.stage}{r.how}" for r in results for t in r.tests}
+
+    def finished(cases: list) -> None:
+        for t in cases:
+            print(f"{test_line(t)}  ({labels[id(t)]})")
+        sys.stdout.flush()
+
     try:
-        run_cases(sandbox, jobs, args.seed, args.timeout, Deadline(None), scratch, scratch, args.jobs)
+        run_cases(sandbox, jobs, args.seed, args.timeout, Deadline(None), scratch, scratch, args.jobs,
+                  finished if live else None)
     finally:
         sandbox.finish()
         shutil.rmtree(scratch, ignore_errors=True)
@@ -77,7 +88,7 @@ def cmd_run(args) -> int:
     if args.expect == "fail":
         passed, failed = stub_check(results)
     else:
-        print(text)
+        print("\n" + report(results, args.seed, title, passes=False))
         passed, failed = summary_line(results)
         print(f"\n{passed} passed, {failed} failed")
     for problem in mistagged:

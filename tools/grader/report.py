@@ -85,10 +85,11 @@ def grouped_lines(tests: list) -> list:
     return lines
 
 
-def report(results: list, seed: int, title: str) -> str:
+def report(results: list, seed: int, title: str, passes: bool = True) -> str:
     """The report, per lab: what the student can act on first (tests that broke, with their values,
     hint and handout section; visible before hidden), then one line per unwritten function, the
-    passes, and a summary naming the failure to fix first. Deterministic: the tests' own order."""
+    passes (not with `passes` false: a run that printed each test's line as it finished), and a
+    summary naming the failure to fix first. Deterministic: the tests' own order."""
     out = [title, f"random seed: {seed} (rerun one test: build/test_NN_name_labs \"<test name>\" "
                   f"--rng-seed {seed})", ""]
     total = earned = 0.0
@@ -112,7 +113,7 @@ def report(results: list, seed: int, title: str) -> str:
         for t in broke:
             out += failure_block(t)
         out += grouped_lines(other) + todo_lines(todo)
-        out += [test_line(t) for t in passed]
+        out += [test_line(t) for t in passed] if passes else []
         failing = len(broke) + len(other)
         first_fix = broke[0].name if broke else ("the build's first error above" if r.compile_error else "")
         fix = f"; fix first: {first_fix}" if first_fix else ""

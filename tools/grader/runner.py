@@ -150,9 +150,11 @@ TEST_CASE_RE = re.compile(r"<TestCase\b.*?</TestCase>", re.DOTALL)
 
 
 def run_cases(sandbox: Sandbox, jobs: list, seed: int, timeout: float, deadline: Deadline,
-              scratch: Path, homes: Path, workers: int) -> None:
+              scratch: Path, homes: Path, workers: int, decided=None) -> None:
     """Runs (program, case) pairs, `workers` at a time: a batch program's cases in batches of
-    BATCH_SIZE (run_batch()), any other's one process each (run_one())."""
+    BATCH_SIZE (run_batch()), any other's one process each (run_one()). `decided`, when given, is
+    called in this thread with each batch's (or single test's) cases as soon as they are decided,
+    in the order they finish."""
     batches, single = {}, []
     for program, case in jobs:
         if program.batch:
@@ -160,13 +162,15 @@ def run_cases(sandbox: Sandbox, jobs: list, seed: int, timeout: float, deadline:
         else:
             single.append((program, case))
     with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(run_batch, sandbox, program, cases[i:i + BATCH_SIZE], seed, timeout,
-                               deadline, scratch, homes)
-                   for program, cases in batches.items() for i in range(0, len(cases), BATCH_SIZE)]
-        futures += [pool.submit(run_one, sandbox, program, case, seed, timeout, deadline, scratch, homes)
-                    for program, case in single]
-        for future in futures:
+        futures = {pool.submit(run_batch, sandbox, program, cases[i:i + BATCH_SIZE], seed, timeout,
+                               deadline, scratch, homes): cases[i:i + BATCH_SIZE]
+                   for program, cases in batches.items() for i in range(0, len(cases), BATCH_SIZE)}
+        futures.update({pool.submit(run_one, sandbox, program, case, seed, timeout, deadline, scratch, homes): [case]
+                        for program, case in single})
+        for future in concurrent.futures.as_completed(futures):
             future.result()
+            if decided is not None:
+                decided(futures[future])
 
 
 def run_batch(sandbox: Sandbox, program: Program, cases: list, seed: int, timeout: float,

@@ -51,6 +51,12 @@ class Report(unittest.TestCase):
         self.assertEqual(self.text.splitlines()[-1],
                          f"TOTAL: 2 / 11 points; 1 pass, 2 fail, 3 todo; fix first: lab {STAGE}: visible broke")
 
+    def test_without_passes_only_their_lines_go(self):
+        # A run that printed each test's line as it finished repeats no pass, and keeps the rest
+        brief = report([self.result], 42, "a title", passes=False)
+        self.assertNotIn("PASS", brief)
+        self.assertEqual([line for line in self.text.splitlines() if "PASS" not in line], brief.splitlines())
+
     def test_results_json_hides_hidden_tests_until_published(self):
         data = gradescope_json([self.result], 1.234)
         self.assertEqual((data["score"], data["max_score"], data["execution_time"]), (2.0, 11.0, 1.23))
