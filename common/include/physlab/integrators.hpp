@@ -10,6 +10,7 @@
 #include <array>
 #include <string>
 
+#include "physlab/dense_lu.hpp"
 #include "physlab/math.hpp"
 #include "physlab/system.hpp"
 

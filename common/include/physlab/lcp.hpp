@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "physlab/dense_lu.hpp"
 #include "physlab/error.hpp"
 #include "physlab/math.hpp"
 
