@@ -101,7 +101,9 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   // substep's end less the one before its warm start), with no second pass over the points
   const Vec3 dv = h_s * gravity;
   warm_.assign(bodies.size(), Velocity{});
-  for (const Point& pt : points_) pt.apply(warm_[pt.a], warm_[pt.b], motion_[pt.a].inv_mass, motion_[pt.b].inv_mass, pt.lambda);
+  for (const Point& pt : points_) {
+    pt.apply(warm_[pt.a], warm_[pt.b], motion_[pt.a].inv_mass, motion_[pt.b].inv_mass, pt.lambda);
+  }
   const int sweeps = settings_.solve_iterations + settings_.relax_iterations;
   for (int step = 0; step < n; ++step) {
     for (std::size_t i = 0; i < motion_.size(); ++i) {
