@@ -43,20 +43,6 @@ class NumericalFailure : public std::runtime_error {
   explicit NumericalFailure(const std::string& what) : std::runtime_error("numerical failure: " + what) {}
 };
 
-/// Throw InvalidInput naming `what` unless `value` is finite and strictly positive.
-inline void requirePositive(double value, std::string_view what) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw InvalidInput(std::string(what) + " must be positive and finite, got " + std::to_string(value));
-  }
-}
-
-/// Throw InvalidInput naming `what` unless `value` is finite and not negative.
-inline void requireNonNegative(double value, std::string_view what) {
-  if (!(std::isfinite(value) && value >= 0.0)) {
-    throw InvalidInput(std::string(what) + " must be non-negative and finite, got " + std::to_string(value));
-  }
-}
-
 /// Internals of the checks below.
 namespace detail {
 /// The search half of firstNonFinite(), out of line and cold, so that the check itself is a few
@@ -69,6 +55,17 @@ template <class Derived>
     }
   }
   return -1;
+}
+
+/// requirePositive()'s message, built out of line and only on failure: the checks stay a few
+/// instructions inside hot functions, with no string work in their way.
+[[noreturn, gnu::cold, gnu::noinline]] inline void throwNotPositive(std::string_view what, double value) {
+  throw InvalidInput(std::string(what) + " must be positive and finite, got " + std::to_string(value));
+}
+
+/// requireNonNegative()'s message, built out of line and only on failure.
+[[noreturn, gnu::cold, gnu::noinline]] inline void throwNegative(std::string_view what, double value) {
+  throw InvalidInput(std::string(what) + " must be non-negative and finite, got " + std::to_string(value));
 }
 
 /// requireInRange()'s message, built out of line and only on failure.
@@ -90,6 +87,16 @@ template <class Derived>
                      std::to_string(col) + ")");
 }
 }  // namespace detail
+
+/// Throw InvalidInput naming `what` unless `value` is finite and strictly positive.
+inline void requirePositive(double value, std::string_view what) {
+  if (!(std::isfinite(value) && value > 0.0)) detail::throwNotPositive(what, value);
+}
+
+/// Throw InvalidInput naming `what` unless `value` is finite and not negative.
+inline void requireNonNegative(double value, std::string_view what) {
+  if (!(std::isfinite(value) && value >= 0.0)) detail::throwNegative(what, value);
+}
 
 /// Column-major index of the first NaN or infinite entry of `values`, or -1 when every entry is
 /// finite. A sum is finite exactly when no entry is NaN or infinite (barring overflow, which the
