@@ -313,6 +313,12 @@ Aabb aabb(const Shape& shape, const Pose& pose) {
     }
     return box;
   }
+  // A box reaches |R| h from its centre along the world axes, where its support points along
+  // them lie (the general path below, with no search)
+  if (const auto* b = std::get_if<Box>(&shape)) {
+    const Vec3 reach = pose.q.toRotationMatrix().cwiseAbs() * b->half_extents;
+    return {pose.x - reach, pose.x + reach};
+  }
   // The support points along the six axis directions bound the shape exactly.
   Aabb box;
   for (int k = 0; k < 3; ++k) {
