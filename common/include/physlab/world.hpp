@@ -57,6 +57,7 @@
 #include <iosfwd>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physlab/broadphase.hpp"
@@ -527,7 +528,9 @@ class World {
   static std::uint64_t pairKey(int a, int b) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
   }
-  const LastImpulse* lastImpulse(const Contact& c) const;
+  // The runs of last_pairs_ with this key: a pair may have two (lastImpulse() searches both)
+  std::pair<const LastPair*, const LastPair*> lastRuns(std::uint64_t key) const;
+  const LastImpulse* lastImpulse(const Contact& c, std::pair<const LastPair*, const LastPair*> runs) const;
   std::vector<LastImpulse> last_impulses_;
   std::vector<LastPair> last_pairs_;
   std::vector<int> bounded_, planes_;

@@ -488,6 +488,9 @@ void World::classifyContacts() {
   if (contacts_.empty()) return;
   PhaseTimer timer(times_.classify);
   loadContactBodies();
+  // A pair's points come together: its runs of last step's impulses are looked up once
+  std::uint64_t key = 0;
+  std::pair<const LastPair*, const LastPair*> runs{nullptr, nullptr};
   for (Contact& c : contacts_) {
     // v_rel = n . (pdot_A - pdot_B), computed here so the framework never depends on student code
     const ContactBody &A = contact_bodies_[c.a], &B = contact_bodies_[c.b];
@@ -506,7 +509,11 @@ void World::classifyContacts() {
     const bool warm = !resting_solver_ ? settings_.method != ResponseMethod::Penalty
                                         : resting_solver_->bounces() || c.kind != ContactKind::Colliding;
     if (settings_.warm_start && warm) {
-      if (const LastImpulse* last = lastImpulse(c)) {
+      if (runs.first == nullptr || pairKey(c.a, c.b) != key) {
+        key = pairKey(c.a, c.b);
+        runs = lastRuns(key);
+      }
+      if (const LastImpulse* last = lastImpulse(c, runs)) {
         c.j = last->j;
         c.j_t = last->j_t;
       }
@@ -514,15 +521,18 @@ void World::classifyContacts() {
   }
 }
 
-const World::LastImpulse* World::lastImpulse(const Contact& c) const {
+std::pair<const World::LastPair*, const World::LastPair*> World::lastRuns(std::uint64_t key) const {
+  const auto [first, last] = std::equal_range(last_pairs_.begin(), last_pairs_.end(), LastPair{key, 0, 0},
+                                              [](const LastPair& x, const LastPair& y) { return x.key < y.key; });
+  return {last_pairs_.data() + (first - last_pairs_.begin()), last_pairs_.data() + (last - last_pairs_.begin())};
+}
+
+const World::LastImpulse* World::lastImpulse(const Contact& c, std::pair<const LastPair*, const LastPair*> runs) const {
   // A point farther than this from every last point of its pair is new [m]
   constexpr double kSamePoint = 0.01;
-  const std::uint64_t key = pairKey(c.a, c.b);
   const LastImpulse* nearest = nullptr;
   double best = kSamePoint * kSamePoint;
-  for (auto pair = std::lower_bound(last_pairs_.begin(), last_pairs_.end(), key,
-                                    [](const LastPair& x, std::uint64_t k) { return x.key < k; });
-       pair != last_pairs_.end() && pair->key == key; ++pair) {
+  for (const LastPair* pair = runs.first; pair != runs.second; ++pair) {
     for (int k = pair->begin; k < pair->end; ++k) {
       const LastImpulse& last = last_impulses_[static_cast<std::size_t>(k)];
       if (last.id == c.id) return &last;
