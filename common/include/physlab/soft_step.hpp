@@ -134,7 +134,10 @@ struct SoftStepSettings {
 /// the friction impulse then shrunk onto the new disc: relaxing takes back the spring's push, and
 /// friction was solved by the soft sweep); the sweeps visit the contact pairs from the top down
 /// (SoftStepSettings::top_down), each pair's points together, its two bodies' velocities held in
-/// local copies meanwhile (as Box2D solves a manifold). A substep's impulses add up to the change
+/// local copies meanwhile (as Box2D solves a manifold). A point's three relative velocities are
+/// read at once; its normal impulse moves the tangent ones through the rows' coupling (the
+/// off-diagonal of K), and one update applies all three rows to the bodies. The separations are
+/// found by the first sweep after the bodies move and reused until they move again. A substep's impulses add up to the change
 /// they made to its bodies' velocities, so the next warm start is taken per body from that change,
 /// and no pass reads the points for it. After the substeps, a colliding
 /// point (Contact::kind) with \f$\epsilon > 0\f$ that was pushed gets one restitution update towards
@@ -174,7 +177,9 @@ class SoftStepSolver : public RestingContactSolver {
     Vec3 ang_a[3], ang_b[3];                      // r x d
     Vec3 turn_a[3], turn_b[3];                    // I^-1 (r x d)
     double mass[3] = {};                          // effective masses 1/K [kg]
+    Eigen::Vector2d coupling = Eigen::Vector2d::Zero();  // K between n and t, o [1/kg]
     double depth = 0.0;                           // at the step's start [m]
+    double separation = 0.0;                      // the gap now [m]
     double mu = 0.0;
     bool soft_fixed = false;                      // one body fixed: the stiffer spring
     bool bounce = false;                          // colliding with epsilon > 0
@@ -187,23 +192,23 @@ class SoftStepSolver : public RestingContactSolver {
       total += lambda;
       pushed = std::max(pushed, lambda(0));
     }
-    /// The relative velocity of the touching points along row i (0: n, 1: t, 2: o) [m/s].
-    double velocity(const Motion& A, const Motion& B, int i) const {
-      return d[i].dot(A.v - B.v) + ang_a[i].dot(A.omega) - ang_b[i].dot(B.omega);
-    }
-    /// Applies the impulse `change` [N s] along row i: +d_i to A, -d_i to B.
-    void apply(Motion& A, Motion& B, int i, double change) const {
-      A.v += (A.inv_mass * change) * d[i];
-      A.omega += change * turn_a[i];
-      B.v -= (B.inv_mass * change) * d[i];
-      B.omega -= change * turn_b[i];
-    }
-    /// Applies the impulses `change` [N s] along the rows from `first` to 2 at once to the
-    /// velocities of A and B (a Motion, or a Velocity change), of inverse masses inv_a and inv_b.
+    /// The relative velocity of the touching points along row i (0: n, 1: t, 2: o) [m/s], given
+    /// dv = A.v - B.v (A and B a Motion or a Velocity).
     template <class Body>
-    void apply(Body& A, Body& B, double inv_a, double inv_b, const Vec3& change, int first = 0) const {
-      Vec3 J = Vec3::Zero(), turn_A = Vec3::Zero(), turn_B = Vec3::Zero();
-      for (int i = first; i < 3; ++i) {
+    double velocity(const Vec3& dv, const Body& A, const Body& B, int i) const {
+      return d[i].dot(dv) + ang_a[i].dot(A.omega) - ang_b[i].dot(B.omega);
+    }
+    /// The gap now [m] (< 0 overlapping): the anchors moved with their bodies, to first order in
+    /// the rotation.
+    double gap(const Motion& A, const Motion& B) const {
+      return -depth + d[0].dot(A.dx - B.dx) + ang_a[0].dot(A.dtheta) - ang_b[0].dot(B.dtheta);
+    }
+    /// Applies the impulses `change` [N s] along rows first to last - 1 at once to the
+    /// velocities of A and B (a Motion, or a Velocity or its change), of inverse masses inv_a and inv_b.
+    template <class Body>
+    void apply(Body& A, Body& B, double inv_a, double inv_b, const Vec3& change, int first = 0, int last = 3) const {
+      Vec3 J = change(first) * d[first], turn_A = change(first) * turn_a[first], turn_B = change(first) * turn_b[first];
+      for (int i = first + 1; i < last; ++i) {
         J += change(i) * d[i];
         turn_A += change(i) * turn_a[i];
         turn_B += change(i) * turn_b[i];
@@ -213,13 +218,11 @@ class SoftStepSolver : public RestingContactSolver {
       B.v -= inv_b * J;
       B.omega -= turn_B;
     }
-    void apply(Motion& A, Motion& B, const Vec3& change, int first) const {
-      apply(A, B, A.inv_mass, B.inv_mass, change, first);
-    }
   };
   // One sweep over the points; the substep's closing sweep (`closing`) also adds each point's
-  // impulses to the step's totals
-  void sweep(double h_s, bool relax, bool closing);
+  // impulses to the step's totals; the first after the bodies moved (`moved`) finds the points'
+  // separations
+  void sweep(double h_s, bool relax, bool closing, bool moved);
   template <int>
   friend struct remote::Access;  // in a grade, solve() runs in the worker: the state crosses with it
 

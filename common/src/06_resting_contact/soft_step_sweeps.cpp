@@ -60,6 +60,7 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 
   // Points: anchors, Jacobian parts, effective masses; the warm start is last step's impulse per substep
   points_.resize(resting.size());
+  const double per_substep = 1.0 / n;
   for (std::size_t k = 0; k < resting.size(); ++k) {
     const Contact& c = contacts[static_cast<std::size_t>(sweep_contacts_[k])];
     Point& pt = points_[k];
@@ -82,16 +83,20 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
       }
       pt.mass[i] = 1.0 / K;
     }
+    // The n row's velocity change per unit tangent impulse, and the reverse (K is symmetric;
+    // the rows' directions are orthogonal, so only the turns couple them)
+    for (int i = 1; i < 3; ++i) pt.coupling(i - 1) = pt.ang_a[0].dot(pt.turn_a[i]) + pt.ang_b[0].dot(pt.turn_b[i]);
     pt.depth = c.depth;
+    pt.separation = -c.depth;
     pt.mu = c.mu;
     pt.soft_fixed = A.inv_mass == 0.0 || B.inv_mass == 0.0;
     pt.bounce = c.kind == ContactKind::Colliding && c.epsilon > 0.0;
     pt.target = -c.epsilon * c.v_rel_minus;
     pt.pushed = 0.0;
     pt.total = Vec3::Zero();
-    pt.lambda = Vec3(std::max(0.0, c.j), c.j_t.dot(pt.d[1]), c.j_t.dot(pt.d[2])) / n;
-    const double radius = pt.mu * pt.lambda(0), length = pt.lambda.tail<2>().norm();
-    if (length > radius) pt.lambda.tail<2>() *= length > 0.0 ? radius / length : 0.0;
+    pt.lambda = Vec3(std::max(0.0, c.j), c.j_t.dot(pt.d[1]), c.j_t.dot(pt.d[2])) * per_substep;
+    const double radius = pt.mu * pt.lambda(0), length2 = pt.lambda.tail<2>().squaredNorm();
+    if (length2 > radius * radius) pt.lambda.tail<2>() *= radius / std::sqrt(length2);
   }
 
   // The substeps: gravity and the warm start (the last substep's impulses again), soft sweeps,
@@ -105,6 +110,7 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     pt.apply(warm_[pt.a], warm_[pt.b], motion_[pt.a].inv_mass, motion_[pt.b].inv_mass, pt.lambda);
   }
   const int sweeps = settings_.solve_iterations + settings_.relax_iterations;
+  bool moved = false;  // the bodies moved since the points' separations were found
   for (int step = 0; step < n; ++step) {
     for (std::size_t i = 0; i < motion_.size(); ++i) {
       Motion& body = motion_[i];
@@ -116,8 +122,10 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     }
     for (int i = 0; i < sweeps; ++i) {
       const bool relax = i >= settings_.solve_iterations;
-      sweep(h_s, relax, i + 1 == sweeps);
+      sweep(h_s, relax, i + 1 == sweeps, moved);
+      moved = false;
       if (i + 1 != settings_.solve_iterations) continue;
+      moved = true;
       for (std::size_t j = 0; j < motion_.size(); ++j) {
         Motion& body = motion_[j];
         if (!(body.inv_mass > 0.0)) continue;
@@ -137,9 +145,9 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   for (Point& pt : points_) {
     if (!pt.bounce || pt.pushed <= 0.0) continue;
     Motion &A = motion_[pt.a], &B = motion_[pt.b];
-    const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (pt.velocity(A, B, 0) - pt.target));
+    const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (pt.velocity(A.v - B.v, A, B, 0) - pt.target));
     const double change = lambda - pt.lambda(0);
-    pt.apply(A, B, 0, change);
+    pt.apply(A, B, A.inv_mass, B.inv_mass, Vec3(change, 0.0, 0.0), 0, 1);
     pt.lambda(0) = lambda;
     pt.total(0) += change;
   }
@@ -161,37 +169,45 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 // One Gauss-Seidel sweep over the points: the normal row by softNormalImpulse() at the separation
 // now, then friction on the disc of radius mu lambda_n (a relax sweep only shrinks the friction
 // impulse onto the new disc: it takes back the normal push, friction was solved by the soft
-// sweep). A pair's points come together: its two bodies' motion is read once, updated in local
-// copies and written back once. The substep's closing sweep adds each point's final impulses to
-// the step's
-void SoftStepSolver::sweep(double h_s, bool relax, bool closing) {
+// sweep). A pair's points come together: its two bodies' velocities are read once, updated in
+// local copies and written back once. The first sweep after the bodies moved (`moved`) finds
+// each point's separation, the others reuse it. The substep's closing sweep adds each point's
+// final impulses to the step's
+void SoftStepSolver::sweep(double h_s, bool relax, bool closing, bool moved) {
   for (std::size_t k = 0; k < points_.size();) {
     const std::size_t a = points_[k].a, b = points_[k].b;
-    Motion A = motion_[a], B = motion_[b];
+    const double inv_a = motion_[a].inv_mass, inv_b = motion_[b].inv_mass;
+    Velocity A{motion_[a].v, motion_[a].omega}, B{motion_[b].v, motion_[b].omega};
     for (; k < points_.size() && points_[k].a == a && points_[k].b == b; ++k) {
       Point& pt = points_[k];
-      const double v_n = pt.velocity(A, B, 0);
-      // The anchors moved with their bodies: the gap now, to first order in the rotation
-      const double s = -pt.depth + pt.d[0].dot(A.dx - B.dx) + pt.ang_a[0].dot(A.dtheta) - pt.ang_b[0].dot(B.dtheta);
-      const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, s, pt.mass[0], pt.soft_fixed ? soft_fixed_ : soft_,
-                                                h_s, settings_.max_push, relax);
-      pt.apply(A, B, 0, lambda_n - pt.lambda(0));
-      pt.lambda(0) = lambda_n;
-      // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc
+      if (moved) pt.separation = pt.gap(motion_[a], motion_[b]);
+      const Vec3 dv = A.v - B.v;
+      const double v_n = pt.velocity(dv, A, B, 0);
+      const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, pt.separation, pt.mass[0],
+                                                pt.soft_fixed ? soft_fixed_ : soft_, h_s, settings_.max_push, relax);
+      const double change_n = lambda_n - pt.lambda(0);
+      // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc. Its
+      // velocities are read before the normal impulse and moved by it through the rows' coupling
       Eigen::Vector2d lambda_T = pt.lambda.tail<2>();
       if (!relax) {
-        lambda_T -= Eigen::Vector2d(pt.mass[1] * pt.velocity(A, B, 1), pt.mass[2] * pt.velocity(A, B, 2));
+        const Eigen::Vector2d v_T(pt.velocity(dv, A, B, 1), pt.velocity(dv, A, B, 2));
+        lambda_T -= Eigen::Vector2d(pt.mass[1], pt.mass[2]).cwiseProduct(v_T + change_n * pt.coupling);
       }
       const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
-      if (length2 > radius * radius) lambda_T *= radius > 0.0 ? radius / std::sqrt(length2) : 0.0;
-      if (lambda_T != pt.lambda.tail<2>()) {
-        pt.apply(A, B, Vec3(0.0, lambda_T(0) - pt.lambda(1), lambda_T(1) - pt.lambda(2)), 1);
-        pt.lambda.tail<2>() = lambda_T;
+      if (length2 > radius * radius) lambda_T *= radius / std::sqrt(length2);
+      const Vec3 lambda(lambda_n, lambda_T(0), lambda_T(1));
+      if (relax && lambda_T == pt.lambda.tail<2>()) {
+        pt.apply(A, B, inv_a, inv_b, Vec3(change_n, 0.0, 0.0), 0, 1);  // friction as it was: the normal row alone
+      } else {
+        pt.apply(A, B, inv_a, inv_b, lambda - pt.lambda);
       }
+      pt.lambda = lambda;
       if (closing) pt.addToStep();
     }
-    motion_[a] = A;
-    motion_[b] = B;
+    motion_[a].v = A.v;
+    motion_[a].omega = A.omega;
+    motion_[b].v = B.v;
+    motion_[b].omega = B.omega;
   }
 }
 
