@@ -17,6 +17,16 @@
 
 namespace physlab {
 
+namespace {
+// A point whose effective mass along a row is not positive (both bodies fixed), out of line
+[[noreturn, gnu::cold, gnu::noinline]] void throwNoMovingBody(int contact, const Vec3& K) {
+  int row = 0;
+  while (row < 2 && K(row) > 0.0) ++row;
+  throw InvalidInput("soft step: contact " + std::to_string(contact) + " has no moving body along row " +
+                     std::to_string(row));
+}
+}  // namespace
+
 int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>& contacts,
                           const std::vector<int>& resting, const std::vector<BodyDescription>& /*descriptions*/,
                           const std::vector<BodyState>& /*states*/, const Vec3& gravity, double h) {
@@ -70,19 +80,24 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     pt.b = static_cast<std::size_t>(c.b);
     const Vec3 r_a = c.p - A.x, r_b = c.p - B.x;  // the anchors, from the centres at the step's start
     pt.d[0] = c.n;
-    std::tie(pt.d[1], pt.d[2]) = tangentPair(c.n);
+    // A pair's points share its normal, and so its tangents
+    const Point* previous = k > 0 ? &points_[k - 1] : nullptr;
+    if (previous && previous->a == pt.a && previous->b == pt.b && previous->d[0] == c.n) {
+      pt.d[1] = previous->d[1];
+      pt.d[2] = previous->d[2];
+    } else {
+      std::tie(pt.d[1], pt.d[2]) = tangentPair(c.n);
+    }
+    Vec3 K;
     for (int i = 0; i < 3; ++i) {
       pt.ang_a[i] = r_a.cross(pt.d[i]);
       pt.ang_b[i] = r_b.cross(pt.d[i]);
       pt.turn_a[i] = A.I_inv_world * pt.ang_a[i];
       pt.turn_b[i] = B.I_inv_world * pt.ang_b[i];
-      const double K = A.inv_mass + B.inv_mass + pt.ang_a[i].dot(pt.turn_a[i]) + pt.ang_b[i].dot(pt.turn_b[i]);
-      if (!(K > 0.0)) {
-        throw InvalidInput("soft step: contact " + std::to_string(sweep_contacts_[k]) + " has no moving body along row " +
-                           std::to_string(i));
-      }
-      pt.mass[i] = 1.0 / K;
+      K(i) = A.inv_mass + B.inv_mass + pt.ang_a[i].dot(pt.turn_a[i]) + pt.ang_b[i].dot(pt.turn_b[i]);
     }
+    if (!(K.minCoeff() > 0.0)) throwNoMovingBody(sweep_contacts_[k], K);
+    for (int i = 0; i < 3; ++i) pt.mass[i] = 1.0 / K(i);
     // The n row's velocity change per unit tangent impulse, and the reverse (K is symmetric;
     // the rows' directions are orthogonal, so only the turns couple them)
     for (int i = 1; i < 3; ++i) pt.coupling(i - 1) = pt.ang_a[0].dot(pt.turn_a[i]) + pt.ang_b[0].dot(pt.turn_b[i]);
