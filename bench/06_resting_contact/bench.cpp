@@ -59,7 +59,8 @@
 //
 // Timing: before each engine and size, an untimed warm-up of 2 steps; then windows, each a fresh
 // world (not timed) stepped from the same initial state, timing only the step calls; the fastest
-// window counts. An engine gets a wall budget per size: a window stops when its steps have cost
+// window counts. At a size the engines take turns, one window each per round (up to 5 rounds),
+// so that a slow spell of a shared machine falls on all of them alike. An engine gets a wall budget per size: a window stops when its steps have cost
 // more than the budget (the row then says how far it got), and no further window starts when the
 // next would exceed it. A size is not run when the cost of a step estimated from the smaller size
 // (contacts grow like the cubes; dense PGS costs like n^2, pivoting, Lemke and Dantzig like n^3)
@@ -71,8 +72,7 @@
 // Outcome, from the first window: "stands" when no cube moved more than 5 cm over the full 10 s,
 // "collapsed" when one did, "EXPLODED" when positions went non-finite or a cube got farther
 // from its start than toppling could carry it (the pyramid's width plus its height), "no
-// verdict yet" when a budget stopped the run first with no cube beyond 5 cm. Each engine's
-// windows run back to back (not interleaved with the other engines': ours may take one window).
+// verdict yet" when a budget stopped the run first with no cube beyond 5 cm.
 // Writes <out>/lab06_bench.md and the chart <out>/lab06_bench; the suite <out>/lab06_bench_suite.md
 // and the chart <out>/lab06_bench_suite; the suite's 10-cube stack in the same engines and the soft
 // step, its top's sideways drift against time, <out>/lab06_bench_stack_drift.
@@ -376,6 +376,8 @@ struct Run {
   bool finite = true;
   int contacts = 0;             // contact points in the last step
   int windows = 0;
+  double spent = 0.0;           // wall time of its windows so far [s]
+  bool done = false;            // no more windows: failed, stopped, or out of budget
   int messages = 0;             // ODE: messages (LCP internal errors) in the first window
   std::string message;
   double per_step() const { return steps > 0 ? elapsed.back() / steps : NAN; }
@@ -392,83 +394,94 @@ double largestDrift(const Simulation& sim, const std::vector<Vec3>& start, bool&
   return drift;
 }
 
-Run runEngine(const Engine& engine, const Scene& scene, int steps, int max_windows) {
+// A run's warm-up: two steps of a throwaway copy, so that caches and the allocator are warm.
+// A failure here ends the run (every window would fail the same way: the steps are deterministic)
+Run startRun(const Engine& engine, const Scene& scene) {
   Run r;
   r.run = true;
-  std::vector<Vec3> start;
-  for (const BodyState& s : scene.states) start.push_back(s.x);
-  double spent = 0.0;
   int warm_steps = 0;
   try {
     auto warm = engine.make(scene);
     for (; warm_steps < 2; ++warm_steps) warm->step(kStep);
   } catch (const std::exception& e) {
-    // Every window would fail the same way: the steps are deterministic
     r.note = "failed at t = " + fmt((warm_steps + 1) * kStep) + " s: " + e.what();
-    return r;
+    r.done = true;
   }
-  for (int w = 0; w < max_windows; ++w) {
+  return r;
+}
+
+// One timing window of `steps` steps from the scene's start: the first sets the run's outcome
+// (drift, contacts), the fastest full one its times. A stopped or failed window ends the run, as
+// does the engine's budget
+void runWindow(const Engine& engine, const Scene& scene, int steps, Run& r) {
+  std::vector<Vec3> start;
+  for (const BodyState& s : scene.states) start.push_back(s.x);
+  const int w = r.windows;
 #ifdef PHYSLAB_HAVE_ODE
-    ode_messages = 0;
-    ode_first_message.clear();
+  ode_messages = 0;
+  ode_first_message.clear();
 #endif
-    auto sim = engine.make(scene);
-    std::vector<double> elapsed;
-    double t = 0.0, drift_max = 0.0;
-    bool finite = true;
-    std::string note;
-    try {
-      for (int n = 0; n < steps; ++n) {
-        Stopwatch clock;
-        sim->step(kStep);
-        t += clock.seconds();
-        elapsed.push_back(t);
-        drift_max = std::max(drift_max, largestDrift(*sim, start, finite));
-        if (!finite) {
-          note = "positions not finite at t = " + fmt((n + 1) * kStep) + " s";
-          break;
-        }
-        if (t > engine.budget && n + 1 < steps) {
-          note = "stopped by the " + fmt(engine.budget) + " s budget at t = " + fmt((n + 1) * kStep) + " s";
-          break;
-        }
+  auto sim = engine.make(scene);
+  std::vector<double> elapsed;
+  double t = 0.0, drift_max = 0.0;
+  bool finite = true;
+  std::string note;
+  try {
+    for (int n = 0; n < steps; ++n) {
+      Stopwatch clock;
+      sim->step(kStep);
+      t += clock.seconds();
+      elapsed.push_back(t);
+      drift_max = std::max(drift_max, largestDrift(*sim, start, finite));
+      if (!finite) {
+        note = "positions not finite at t = " + fmt((n + 1) * kStep) + " s";
+        break;
       }
-    } catch (const std::exception& e) {
-      note = "failed at t = " + fmt((static_cast<double>(elapsed.size()) + 1) * kStep) + " s: " + e.what();
-    }
-    spent += t;
-    ++r.windows;
-    if (w == 0) {
-      r.drift_max = drift_max;
-      r.drift_end = largestDrift(*sim, start, r.finite);
-      r.finite = finite && r.finite;
-      r.note = note;
-      r.contacts = sim->contacts();
-#ifdef PHYSLAB_HAVE_ODE
-      r.messages = ode_messages;
-      r.message = ode_first_message;
-#endif
-    }
-    if (w == 0 || (elapsed.size() == r.elapsed.size() && elapsed.back() < r.elapsed.back())) {
-      r.elapsed = elapsed;
-      r.steps = static_cast<int>(elapsed.size());
-      if (const auto* ours = dynamic_cast<const OurSimulation*>(sim.get())) {
-        const PhaseTimes& p = ours->world().times();
-        const double k = 1.0 / std::max(1, r.steps);
-        r.phases.broad_phase = p.broad_phase * k;
-        r.phases.narrow_phase = p.narrow_phase * k;
-        r.phases.classify = p.classify * k;
-        r.phases.resting = p.resting * k;
-        r.phases.integrate = p.integrate * k;
-        r.phases.forces = p.forces * k;
-        r.phases.respond = p.respond * k;
-        r.phases.correct = p.correct * k;
-        r.phases.diagnostics = p.diagnostics * k;
+      if (t > engine.budget && n + 1 < steps) {
+        note = "stopped by the " + fmt(engine.budget) + " s budget at t = " + fmt((n + 1) * kStep) + " s";
+        break;
       }
     }
-    // A stopped or failed window is not repeated; a full one is while the budget allows
-    if (!note.empty() || spent + t > engine.budget) break;
+  } catch (const std::exception& e) {
+    note = "failed at t = " + fmt((static_cast<double>(elapsed.size()) + 1) * kStep) + " s: " + e.what();
   }
+  r.spent += t;
+  ++r.windows;
+  if (w == 0) {
+    r.drift_max = drift_max;
+    r.drift_end = largestDrift(*sim, start, r.finite);
+    r.finite = finite && r.finite;
+    r.note = note;
+    r.contacts = sim->contacts();
+#ifdef PHYSLAB_HAVE_ODE
+    r.messages = ode_messages;
+    r.message = ode_first_message;
+#endif
+  }
+  if (w == 0 || (elapsed.size() == r.elapsed.size() && elapsed.back() < r.elapsed.back())) {
+    r.elapsed = elapsed;
+    r.steps = static_cast<int>(elapsed.size());
+    if (const auto* ours = dynamic_cast<const OurSimulation*>(sim.get())) {
+      const PhaseTimes& p = ours->world().times();
+      const double k = 1.0 / std::max(1, r.steps);
+      r.phases.broad_phase = p.broad_phase * k;
+      r.phases.narrow_phase = p.narrow_phase * k;
+      r.phases.classify = p.classify * k;
+      r.phases.resting = p.resting * k;
+      r.phases.integrate = p.integrate * k;
+      r.phases.forces = p.forces * k;
+      r.phases.respond = p.respond * k;
+      r.phases.correct = p.correct * k;
+      r.phases.diagnostics = p.diagnostics * k;
+    }
+  }
+  // A stopped or failed window is not repeated; a full one is while the budget allows
+  r.done = !note.empty() || r.spent + t > engine.budget;
+}
+
+Run runEngine(const Engine& engine, const Scene& scene, int steps, int max_windows) {
+  Run r = startRun(engine, scene);
+  while (!r.done && r.windows < max_windows) runWindow(engine, scene, steps, r);
   return r;
 }
 
@@ -714,12 +727,14 @@ IslandRain islandRain(int count, const std::string& name, const RestingSettings&
 
 // A pyramid of `rows` rows (one island) with Settings::islands on and off, PGS matrix-free 20
 // sweeps: windows of `steps` steps, each a fresh World, on and off alternating after one untimed
-// window of each, the fastest counting. Returns ms per step, on and off.
+// window of each (which of the two goes first alternating too), the fastest counting. Returns ms
+// per step, on and off.
 std::pair<double, double> pyramidIslands(int rows, int steps, int windows) {
   const Scene scene = cubePyramid(rows);
   double best[2] = {INFINITY, INFINITY};
   for (int w = 0; w <= windows; ++w) {
-    for (int on = 0; on < 2; ++on) {
+    for (int turn = 0; turn < 2; ++turn) {
+      const int on = (w + turn) % 2;
       Settings settings = restingWorldSettings();
       settings.islands = on == 0;
       World world(scene, settings, std::make_shared<LcpContactSolver>(oursSettings(LcpMethod::Pgs, kIterations, true)));
@@ -740,7 +755,7 @@ int main(int argc, char** argv) {
     keepFreedMemory();
     const std::vector<int> rows = options.quick ? std::vector<int>{2, 3} : std::vector<int>{10, 20, 30};
     const int steps = options.quick ? 60 : 600;
-    const int max_windows = options.quick ? 2 : 3;
+    const int max_windows = options.quick ? 2 : 5;
     // Wall budgets per size: the full run is to stay near 8 minutes on the development machine
     const double ours_budget = options.quick ? 3.0 : 45.0;
     [[maybe_unused]] const double peer_budget = options.quick ? 3.0 : 30.0;  // Bullet's and ODE's, when built with them
@@ -867,11 +882,22 @@ int main(int argc, char** argv) {
           r.note = runs[e][s - 1].run ? "not run: " + runs[e][s - 1].note + " at " + std::to_string(before) + " cubes"
                                       : runs[e][s - 1].note;
         }
-        if (r.note.empty()) r = runEngine(engines[e], scene, steps, max_windows);
+        if (r.note.empty()) r = startRun(engines[e], scene);
+        runs[e].push_back(r);
+      }
+      // The engines take turns, a window each, so that a slow spell of a shared machine falls on
+      // all of them alike rather than on whichever ran then (the ratios to Bullet's step)
+      for (int w = 0; w < max_windows; ++w) {
+        for (std::size_t e = 0; e < engines.size(); ++e) {
+          Run& r = runs[e][s];
+          if (r.run && !r.done) runWindow(engines[e], scene, steps, r);
+        }
+      }
+      for (std::size_t e = 0; e < engines.size(); ++e) {
+        const Run& r = runs[e][s];
         std::cout << cubes << " cubes, " << engines[e].name << ": "
                   << (r.steps > 0 ? fmt(1e3 * r.per_step()) + " ms per step over " + std::to_string(r.steps) + " steps, " : "")
                   << outcome(r, steps, reach) << std::endl;
-        runs[e].push_back(r);
       }
       // The dense path's split only where it ran: at 465 cubes its matrix alone is 930 MB
       splits.push_back(runs[kDense][s].steps > 0 ? splitResting(scene) : Split{});
