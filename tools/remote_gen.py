@@ -53,17 +53,21 @@ def split_top(text: str, sep: str = ",") -> list:
 
 
 def definitions(source: str):
-    """(return type, name, parameter list text) of each function defined at namespace level."""
+    """(return type, name, parameter list text) of each function defined at namespace level,
+    but for an unnamed namespace's (the file's own helpers, which stay beside their callers)."""
     text = STRING_RE.sub('""', COMMENT_RE.sub(" ", source))
     text = re.sub(r"^\s*#[^\n]*", " ", text, flags=re.MULTILINE)
     depth, start, found = 0, 0, []
     namespaces = []  # brace depths that opened a namespace
+    unnamed = []  # those of them that opened an unnamed one
     for i, c in enumerate(text):
         if c == "{":
             head = text[start:i].strip()
             if re.match(r"^namespace\b", head):
                 namespaces.append(depth)
-            elif depth == len(namespaces) and "(" in head:
+                if head == "namespace":
+                    unnamed.append(depth)
+            elif depth == len(namespaces) and "(" in head and not unnamed:
                 found.append(head)
             depth += 1
             start = i + 1
@@ -71,6 +75,8 @@ def definitions(source: str):
             depth -= 1
             if namespaces and namespaces[-1] == depth:
                 namespaces.pop()
+                if unnamed and unnamed[-1] == depth:
+                    unnamed.pop()
             start = i + 1
         elif c == ";" and depth == len(namespaces):
             start = i + 1
