@@ -170,48 +170,59 @@ class SoftStepSolver : public RestingContactSolver {
     Vec3 dx = Vec3::Zero();
     Vec3 dtheta = Vec3::Zero();
   };
-  // One contact point: anchors, Jacobian parts along n, t, o and the accumulated impulses
-  struct Point {
+  // A contact pair's points share its bodies and its rows' directions n, t, o (a manifold has
+  // one normal); its points are points_[first] to points_[first + count - 1]
+  struct Pair {
     std::size_t a = 0, b = 0;
-    Vec3 d[3];                                    // n, t, o
-    Vec3 ang_a[3], ang_b[3];                      // r x d
-    Vec3 turn_a[3], turn_b[3];                    // I^-1 (r x d)
-    double mass[3] = {};                          // effective masses 1/K [kg]
-    Eigen::Vector2d coupling = Eigen::Vector2d::Zero();  // K between n and t, o [1/kg]
-    double depth = 0.0;                           // at the step's start [m]
+    Vec3 d[3];                // n, t, o
+    bool soft_fixed = false;  // one body fixed: the stiffer spring
+    int first = 0, count = 0;
+  };
+  // One contact point: its rows' parts and the accumulated impulses, what every sweep reads
+  // first and each row's parts together (a relax sweep reads the n row's three cache lines of
+  // the point's seven), then what only the substep's end and the step's end read
+  struct Point {
     double separation = 0.0;                      // the gap now [m]
+    double depth = 0.0;                           // at the step's start [m]
     double mu = 0.0;
-    bool soft_fixed = false;                      // one body fixed: the stiffer spring
+    double mass[3] = {};                          // effective masses 1/K along n, t, o [kg]
+    Vec3 lambda = Vec3::Zero();                   // accumulated impulses of the substep (n, t, o) [N s]
+    Eigen::Vector2d coupling = Eigen::Vector2d::Zero();  // K between n and t, o [1/kg]
+    struct Row {
+      Vec3 ang_a, ang_b;    // r x d
+      Vec3 turn_a, turn_b;  // I^-1 (r x d)
+    } rows[3];              // n, t, o
     bool bounce = false;                          // colliding with epsilon > 0
     double target = 0.0;                          // the bounce's -epsilon v_rel^- [m/s]
     double pushed = 0.0;                          // largest normal impulse of the step [N s]
-    Vec3 lambda = Vec3::Zero();                   // accumulated impulses of the substep (n, t, o) [N s]
-    Vec3 total = Vec3::Zero();                    // their sum over the step [N s]
+    Vec3 total = Vec3::Zero();                    // the substeps' impulses summed over the step [N s]
     /// Adds the substep's impulses to the step's.
     void addToStep() {
       total += lambda;
       pushed = std::max(pushed, lambda(0));
     }
-    /// The relative velocity of the touching points along row i (0: n, 1: t, 2: o) [m/s], given
+    /// The relative velocity of the touching points along row i of direction d [m/s], given
     /// dv = A.v - B.v (A and B a Motion or a Velocity).
     template <class Body>
-    double velocity(const Vec3& dv, const Body& A, const Body& B, int i) const {
-      return d[i].dot(dv) + ang_a[i].dot(A.omega) - ang_b[i].dot(B.omega);
+    double velocity(const Vec3& d, const Vec3& dv, const Body& A, const Body& B, int i) const {
+      return d.dot(dv) + rows[i].ang_a.dot(A.omega) - rows[i].ang_b.dot(B.omega);
     }
-    /// The gap now [m] (< 0 overlapping): the anchors moved with their bodies, to first order in
-    /// the rotation.
-    double gap(const Motion& A, const Motion& B) const {
-      return -depth + d[0].dot(A.dx - B.dx) + ang_a[0].dot(A.dtheta) - ang_b[0].dot(B.dtheta);
+    /// The gap now along n [m] (< 0 overlapping): the anchors moved with their bodies, to first
+    /// order in the rotation.
+    double gap(const Vec3& n, const Motion& A, const Motion& B) const {
+      return -depth + n.dot(A.dx - B.dx) + rows[0].ang_a.dot(A.dtheta) - rows[0].ang_b.dot(B.dtheta);
     }
-    /// Applies the impulses `change` [N s] along rows first to last - 1 at once to the
+    /// Applies the impulses `change` [N s] along the pair's rows first to last - 1 at once to the
     /// velocities of A and B (a Motion, or a Velocity or its change), of inverse masses inv_a and inv_b.
     template <class Body>
-    void apply(Body& A, Body& B, double inv_a, double inv_b, const Vec3& change, int first = 0, int last = 3) const {
-      Vec3 J = change(first) * d[first], turn_A = change(first) * turn_a[first], turn_B = change(first) * turn_b[first];
+    void apply(const Pair& pair, Body& A, Body& B, double inv_a, double inv_b, const Vec3& change, int first = 0,
+               int last = 3) const {
+      Vec3 J = change(first) * pair.d[first], turn_A = change(first) * rows[first].turn_a,
+           turn_B = change(first) * rows[first].turn_b;
       for (int i = first + 1; i < last; ++i) {
-        J += change(i) * d[i];
-        turn_A += change(i) * turn_a[i];
-        turn_B += change(i) * turn_b[i];
+        J += change(i) * pair.d[i];
+        turn_A += change(i) * rows[i].turn_a;
+        turn_B += change(i) * rows[i].turn_b;
       }
       A.v += inv_a * J;
       A.omega += turn_A;
@@ -228,7 +239,8 @@ class SoftStepSolver : public RestingContactSolver {
 
   SoftStepSettings settings_;
   SoftCoefficients soft_, soft_fixed_;
-  std::vector<Point> points_;
+  std::vector<Pair> pairs_;    // in sweep order
+  std::vector<Point> points_;  // in sweep order, a pair's together
   // A contact pair's points, consecutive in `resting`: from `first`, `count` of them, and the
   // height against gravity of its highest point
   struct Run {

@@ -46,13 +46,14 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 
   // The sweep order: a pair's points together (the sweeps keep its two bodies in registers while
   // they visit them, as Box2D solves a manifold), the pairs from the highest point down along
-  // -gravity (or in the World's order)
+  // -gravity (or in the World's order). A pair here is a run of points with the same bodies and
+  // normal
   order_.clear();
   for (std::size_t k = 0; k < resting.size(); ++k) {
     const Contact& c = contacts[static_cast<std::size_t>(resting[k])];
     const double height = settings_.top_down ? c.p.dot(gravity) : 0.0;
-    const bool same_pair = k > 0 && contacts[static_cast<std::size_t>(resting[k - 1])].a == c.a &&
-                           contacts[static_cast<std::size_t>(resting[k - 1])].b == c.b;
+    const Contact* previous = k > 0 ? &contacts[static_cast<std::size_t>(resting[k - 1])] : nullptr;
+    const bool same_pair = previous && previous->a == c.a && previous->b == c.b && previous->n == c.n;
     if (same_pair) {
       order_.back().height = std::min(order_.back().height, height);
       ++order_.back().count;
@@ -68,50 +69,54 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     for (int k = run.first; k < run.first + run.count; ++k) sweep_contacts_.push_back(resting[static_cast<std::size_t>(k)]);
   }
 
-  // Points: anchors, Jacobian parts, effective masses; the warm start is last step's impulse per substep
+  // Pairs: bodies and rows' directions. Points: Jacobian parts from the anchors, effective
+  // masses; the warm start is last step's impulse per substep
+  pairs_.resize(order_.size());
   points_.resize(resting.size());
   const double per_substep = 1.0 / n;
-  for (std::size_t k = 0; k < resting.size(); ++k) {
-    const Contact& c = contacts[static_cast<std::size_t>(sweep_contacts_[k])];
-    Point& pt = points_[k];
-    const ContactBody& A = bodies[static_cast<std::size_t>(c.a)];
-    const ContactBody& B = bodies[static_cast<std::size_t>(c.b)];
-    pt.a = static_cast<std::size_t>(c.a);
-    pt.b = static_cast<std::size_t>(c.b);
-    const Vec3 r_a = c.p - A.x, r_b = c.p - B.x;  // the anchors, from the centres at the step's start
-    pt.d[0] = c.n;
-    // A pair's points share its normal, and so its tangents
-    const Point* previous = k > 0 ? &points_[k - 1] : nullptr;
-    if (previous && previous->a == pt.a && previous->b == pt.b && previous->d[0] == c.n) {
-      pt.d[1] = previous->d[1];
-      pt.d[2] = previous->d[2];
-    } else {
-      std::tie(pt.d[1], pt.d[2]) = tangentPair(c.n);
+  for (std::size_t p = 0, k = 0; p < order_.size(); ++p) {
+    const Contact& first = contacts[static_cast<std::size_t>(sweep_contacts_[k])];
+    Pair& pair = pairs_[p];
+    pair.a = static_cast<std::size_t>(first.a);
+    pair.b = static_cast<std::size_t>(first.b);
+    pair.d[0] = first.n;
+    std::tie(pair.d[1], pair.d[2]) = tangentPair(first.n);
+    const ContactBody& A = bodies[pair.a];
+    const ContactBody& B = bodies[pair.b];
+    pair.soft_fixed = A.inv_mass == 0.0 || B.inv_mass == 0.0;
+    pair.first = static_cast<int>(k);
+    pair.count = order_[p].count;
+    for (int m = 0; m < pair.count; ++m, ++k) {
+      const Contact& c = contacts[static_cast<std::size_t>(sweep_contacts_[k])];
+      Point& pt = points_[k];
+      const Vec3 r_a = c.p - A.x, r_b = c.p - B.x;  // the anchors, from the centres at the step's start
+      Vec3 K;
+      for (int i = 0; i < 3; ++i) {
+        Point::Row& row = pt.rows[i];
+        row.ang_a = r_a.cross(pair.d[i]);
+        row.ang_b = r_b.cross(pair.d[i]);
+        row.turn_a = A.I_inv_world * row.ang_a;
+        row.turn_b = B.I_inv_world * row.ang_b;
+        K(i) = A.inv_mass + B.inv_mass + row.ang_a.dot(row.turn_a) + row.ang_b.dot(row.turn_b);
+      }
+      if (!(K.minCoeff() > 0.0)) throwNoMovingBody(sweep_contacts_[k], K);
+      for (int i = 0; i < 3; ++i) pt.mass[i] = 1.0 / K(i);
+      // The n row's velocity change per unit tangent impulse, and the reverse (K is symmetric;
+      // the rows' directions are orthogonal, so only the turns couple them)
+      for (int i = 1; i < 3; ++i) {
+        pt.coupling(i - 1) = pt.rows[0].ang_a.dot(pt.rows[i].turn_a) + pt.rows[0].ang_b.dot(pt.rows[i].turn_b);
+      }
+      pt.depth = c.depth;
+      pt.separation = -c.depth;
+      pt.mu = c.mu;
+      pt.bounce = c.kind == ContactKind::Colliding && c.epsilon > 0.0;
+      pt.target = -c.epsilon * c.v_rel_minus;
+      pt.pushed = 0.0;
+      pt.total = Vec3::Zero();
+      pt.lambda = Vec3(std::max(0.0, c.j), c.j_t.dot(pair.d[1]), c.j_t.dot(pair.d[2])) * per_substep;
+      const double radius = pt.mu * pt.lambda(0), length2 = pt.lambda.tail<2>().squaredNorm();
+      if (length2 > radius * radius) pt.lambda.tail<2>() *= radius / std::sqrt(length2);
     }
-    Vec3 K;
-    for (int i = 0; i < 3; ++i) {
-      pt.ang_a[i] = r_a.cross(pt.d[i]);
-      pt.ang_b[i] = r_b.cross(pt.d[i]);
-      pt.turn_a[i] = A.I_inv_world * pt.ang_a[i];
-      pt.turn_b[i] = B.I_inv_world * pt.ang_b[i];
-      K(i) = A.inv_mass + B.inv_mass + pt.ang_a[i].dot(pt.turn_a[i]) + pt.ang_b[i].dot(pt.turn_b[i]);
-    }
-    if (!(K.minCoeff() > 0.0)) throwNoMovingBody(sweep_contacts_[k], K);
-    for (int i = 0; i < 3; ++i) pt.mass[i] = 1.0 / K(i);
-    // The n row's velocity change per unit tangent impulse, and the reverse (K is symmetric;
-    // the rows' directions are orthogonal, so only the turns couple them)
-    for (int i = 1; i < 3; ++i) pt.coupling(i - 1) = pt.ang_a[0].dot(pt.turn_a[i]) + pt.ang_b[0].dot(pt.turn_b[i]);
-    pt.depth = c.depth;
-    pt.separation = -c.depth;
-    pt.mu = c.mu;
-    pt.soft_fixed = A.inv_mass == 0.0 || B.inv_mass == 0.0;
-    pt.bounce = c.kind == ContactKind::Colliding && c.epsilon > 0.0;
-    pt.target = -c.epsilon * c.v_rel_minus;
-    pt.pushed = 0.0;
-    pt.total = Vec3::Zero();
-    pt.lambda = Vec3(std::max(0.0, c.j), c.j_t.dot(pt.d[1]), c.j_t.dot(pt.d[2])) * per_substep;
-    const double radius = pt.mu * pt.lambda(0), length2 = pt.lambda.tail<2>().squaredNorm();
-    if (length2 > radius * radius) pt.lambda.tail<2>() *= radius / std::sqrt(length2);
   }
 
   // The substeps: gravity and the warm start (the last substep's impulses again), soft sweeps,
@@ -121,8 +126,11 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   // substep's end less the one before its warm start), with no second pass over the points
   const Vec3 dv = h_s * gravity;
   warm_.assign(bodies.size(), Velocity{});
-  for (const Point& pt : points_) {
-    pt.apply(warm_[pt.a], warm_[pt.b], motion_[pt.a].inv_mass, motion_[pt.b].inv_mass, pt.lambda);
+  for (const Pair& pair : pairs_) {
+    for (int k = pair.first; k < pair.first + pair.count; ++k) {
+      points_[static_cast<std::size_t>(k)].apply(pair, warm_[pair.a], warm_[pair.b], motion_[pair.a].inv_mass,
+                                                 motion_[pair.b].inv_mass, points_[static_cast<std::size_t>(k)].lambda);
+    }
   }
   const int sweeps = settings_.solve_iterations + settings_.relax_iterations;
   bool moved = false;  // the bodies moved since the points' separations were found
@@ -156,22 +164,24 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     }
   }
 
-  // Restitution: a colliding point that was pushed aims at its bounce, once
-  for (Point& pt : points_) {
-    if (!pt.bounce || pt.pushed <= 0.0) continue;
-    Motion &A = motion_[pt.a], &B = motion_[pt.b];
-    const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (pt.velocity(A.v - B.v, A, B, 0) - pt.target));
-    const double change = lambda - pt.lambda(0);
-    pt.apply(A, B, A.inv_mass, B.inv_mass, Vec3(change, 0.0, 0.0), 0, 1);
-    pt.lambda(0) = lambda;
-    pt.total(0) += change;
-  }
-
-  for (std::size_t k = 0; k < resting.size(); ++k) {
-    Contact& c = contacts[static_cast<std::size_t>(sweep_contacts_[k])];
-    const Point& pt = points_[k];
-    c.j = pt.total(0);
-    c.j_t = pt.total(1) * pt.d[1] + pt.total(2) * pt.d[2];
+  // Restitution: a colliding point that was pushed aims at its bounce, once. Then the step's
+  // impulses go back to the contacts
+  for (const Pair& pair : pairs_) {
+    Motion &A = motion_[pair.a], &B = motion_[pair.b];
+    for (int k = pair.first; k < pair.first + pair.count; ++k) {
+      Point& pt = points_[static_cast<std::size_t>(k)];
+      if (pt.bounce && pt.pushed > 0.0) {
+        const double v_n = pt.velocity(pair.d[0], A.v - B.v, A, B, 0);
+        const double lambda = std::max(0.0, pt.lambda(0) - pt.mass[0] * (v_n - pt.target));
+        const double change = lambda - pt.lambda(0);
+        pt.apply(pair, A, B, A.inv_mass, B.inv_mass, Vec3(change, 0.0, 0.0), 0, 1);
+        pt.lambda(0) = lambda;
+        pt.total(0) += change;
+      }
+      Contact& c = contacts[static_cast<std::size_t>(sweep_contacts_[static_cast<std::size_t>(k)])];
+      c.j = pt.total(0);
+      c.j_t = pt.total(1) * pair.d[1] + pt.total(2) * pair.d[2];
+    }
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     bodies[i].v = motion_[i].v;
@@ -189,32 +199,33 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 // each point's separation, the others reuse it. The substep's closing sweep adds each point's
 // final impulses to the step's
 void SoftStepSolver::sweep(double h_s, bool relax, bool closing, bool moved) {
-  for (std::size_t k = 0; k < points_.size();) {
-    const std::size_t a = points_[k].a, b = points_[k].b;
+  for (const Pair& pair : pairs_) {
+    const std::size_t a = pair.a, b = pair.b;
     const double inv_a = motion_[a].inv_mass, inv_b = motion_[b].inv_mass;
+    const SoftCoefficients& soft = pair.soft_fixed ? soft_fixed_ : soft_;
     Velocity A{motion_[a].v, motion_[a].omega}, B{motion_[b].v, motion_[b].omega};
-    for (; k < points_.size() && points_[k].a == a && points_[k].b == b; ++k) {
-      Point& pt = points_[k];
-      if (moved) pt.separation = pt.gap(motion_[a], motion_[b]);
+    for (int k = pair.first; k < pair.first + pair.count; ++k) {
+      Point& pt = points_[static_cast<std::size_t>(k)];
+      if (moved) pt.separation = pt.gap(pair.d[0], motion_[a], motion_[b]);
       const Vec3 dv = A.v - B.v;
-      const double v_n = pt.velocity(dv, A, B, 0);
-      const double lambda_n = softNormalImpulse(pt.lambda(0), v_n, pt.separation, pt.mass[0],
-                                                pt.soft_fixed ? soft_fixed_ : soft_, h_s, settings_.max_push, relax);
+      const double v_n = pt.velocity(pair.d[0], dv, A, B, 0);
+      const double lambda_n =
+          softNormalImpulse(pt.lambda(0), v_n, pt.separation, pt.mass[0], soft, h_s, settings_.max_push, relax);
       const double change_n = lambda_n - pt.lambda(0);
       // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc. Its
       // velocities are read before the normal impulse and moved by it through the rows' coupling
       Eigen::Vector2d lambda_T = pt.lambda.tail<2>();
       if (!relax) {
-        const Eigen::Vector2d v_T(pt.velocity(dv, A, B, 1), pt.velocity(dv, A, B, 2));
+        const Eigen::Vector2d v_T(pt.velocity(pair.d[1], dv, A, B, 1), pt.velocity(pair.d[2], dv, A, B, 2));
         lambda_T -= Eigen::Vector2d(pt.mass[1], pt.mass[2]).cwiseProduct(v_T + change_n * pt.coupling);
       }
       const double radius = pt.mu * lambda_n, length2 = lambda_T.squaredNorm();
       if (length2 > radius * radius) lambda_T *= radius / std::sqrt(length2);
       const Vec3 lambda(lambda_n, lambda_T(0), lambda_T(1));
       if (relax && lambda_T == pt.lambda.tail<2>()) {
-        pt.apply(A, B, inv_a, inv_b, Vec3(change_n, 0.0, 0.0), 0, 1);  // friction as it was: the normal row alone
+        pt.apply(pair, A, B, inv_a, inv_b, Vec3(change_n, 0.0, 0.0), 0, 1);  // friction as it was: the normal row alone
       } else {
-        pt.apply(A, B, inv_a, inv_b, lambda - pt.lambda);
+        pt.apply(pair, A, B, inv_a, inv_b, lambda - pt.lambda);
       }
       pt.lambda = lambda;
       if (closing) pt.addToStep();
