@@ -230,10 +230,12 @@ class SoftStepSolver : public RestingContactSolver {
       B.omega -= turn_B;
     }
   };
-  // One sweep over the points; the substep's closing sweep (`closing`) also adds each point's
-  // impulses to the step's totals; the first after the bodies moved (`moved`) finds the points'
-  // separations
-  void sweep(double h_s, bool relax, bool closing, bool moved);
+  // One sweep over the points, soft or relaxing (compiled apart: each is a loop of its own, with
+  // no test of the kind per point); the substep's closing sweep (`closing`) also adds each
+  // point's impulses to the step's totals; the first after the bodies moved (`moved`) finds the
+  // points' separations
+  template <bool relax>
+  void sweep(double h_s, bool closing, bool moved);
   template <int>
   friend struct remote::Access;  // in a grade, solve() runs in the worker: the state crosses with it
 

@@ -145,7 +145,11 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     }
     for (int i = 0; i < sweeps; ++i) {
       const bool relax = i >= settings_.solve_iterations;
-      sweep(h_s, relax, i + 1 == sweeps, moved);
+      if (relax) {
+        sweep<true>(h_s, i + 1 == sweeps, moved);
+      } else {
+        sweep<false>(h_s, i + 1 == sweeps, moved);
+      }
       moved = false;
       if (i + 1 != settings_.solve_iterations) continue;
       moved = true;
@@ -198,7 +202,8 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
 // local copies and written back once. The first sweep after the bodies moved (`moved`) finds
 // each point's separation, the others reuse it. The substep's closing sweep adds each point's
 // final impulses to the step's
-void SoftStepSolver::sweep(double h_s, bool relax, bool closing, bool moved) {
+template <bool relax>
+void SoftStepSolver::sweep(double h_s, bool closing, bool moved) {
   for (const Pair& pair : pairs_) {
     const std::size_t a = pair.a, b = pair.b;
     const double inv_a = motion_[a].inv_mass, inv_b = motion_[b].inv_mass;
@@ -215,7 +220,7 @@ void SoftStepSolver::sweep(double h_s, bool relax, bool closing, bool moved) {
       // Friction: rigid, each tangent's own effective mass, the pair clamped to the disc. Its
       // velocities are read before the normal impulse and moved by it through the rows' coupling
       Eigen::Vector2d lambda_T = pt.lambda.tail<2>();
-      if (!relax) {
+      if constexpr (!relax) {
         const Eigen::Vector2d v_T(pt.velocity(pair.d[1], dv, A, B, 1), pt.velocity(pair.d[2], dv, A, B, 2));
         lambda_T -= Eigen::Vector2d(pt.mass[1], pt.mass[2]).cwiseProduct(v_T + change_n * pt.coupling);
       }
