@@ -54,7 +54,8 @@ def split_top(text: str, sep: str = ",") -> list:
 
 def definitions(source: str):
     """(return type, name, parameter list text) of each function defined at namespace level,
-    but for an unnamed namespace's (the file's own helpers, which stay beside their callers)."""
+    but for an unnamed namespace's and templates (the file's own helpers, which stay beside their
+    callers: a template is instantiated where it is used)."""
     text = STRING_RE.sub('""', COMMENT_RE.sub(" ", source))
     text = re.sub(r"^\s*#[^\n]*", " ", text, flags=re.MULTILINE)
     depth, start, found = 0, 0, []
@@ -67,8 +68,9 @@ def definitions(source: str):
                 namespaces.append(depth)
                 if head == "namespace":
                     unnamed.append(depth)
-            elif depth == len(namespaces) and "(" in head and not unnamed:
-                found.append(head)
+            elif depth == len(namespaces) and "(" in head:
+                if not unnamed and not re.match(r"^template\b", head):
+                    found.append(head)
             depth += 1
             start = i + 1
         elif c == "}":
