@@ -24,8 +24,8 @@ SoftCoefficients softCoefficients(double hertz, double zeta, double h) {
 double softNormalImpulse(double lambda, double v_n, double separation, double effective_mass,
                          const SoftCoefficients& soft, double h, double max_push, bool relax) {
   requireNonNegative(lambda, "softNormalImpulse accumulated impulse lambda");
-  if (!std::isfinite(v_n)) throw InvalidInput("softNormalImpulse normal velocity v_n must be finite");
-  if (!std::isfinite(separation)) throw InvalidInput("softNormalImpulse separation must be finite");
+  requireFinite(v_n, "softNormalImpulse normal velocity v_n");
+  requireFinite(separation, "softNormalImpulse separation");
   requirePositive(effective_mass, "softNormalImpulse effective_mass");
   requirePositive(h, "softNormalImpulse substep h");
   requireInRange(max_push, 0.0, INFINITY, "softNormalImpulse max_push");

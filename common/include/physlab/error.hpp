@@ -68,6 +68,11 @@ template <class Derived>
   throw InvalidInput(std::string(what) + " must be non-negative and finite, got " + std::to_string(value));
 }
 
+/// requireFinite()'s message for a number, built out of line and only on failure.
+[[noreturn, gnu::cold, gnu::noinline]] inline void throwNotFinite(std::string_view what, double value) {
+  throw InvalidInput(std::string(what) + " must be finite, got " + std::to_string(value));
+}
+
 /// requireInRange()'s message, built out of line and only on failure.
 [[noreturn, gnu::cold, gnu::noinline]] inline void throwOutOfRange(std::string_view what, double value, double lo,
                                                                    double hi) {
@@ -110,6 +115,11 @@ Index firstNonFinite(const Eigen::DenseBase<Derived>& values) {
 template <class Derived>
 void requireFinite(const Eigen::DenseBase<Derived>& values, std::string_view what) {
   if (const Index k = firstNonFinite(values); k >= 0) detail::throwNonFinite(what, k % values.rows(), k / values.rows());
+}
+
+/// Throw InvalidInput naming `what` unless `value` is finite.
+inline void requireFinite(double value, std::string_view what) {
+  if (!std::isfinite(value)) detail::throwNotFinite(what, value);
 }
 
 /// Throw InvalidInput naming `what` unless lo <= value <= hi: both ends allowed, NaN never (hi may
