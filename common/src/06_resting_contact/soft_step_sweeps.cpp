@@ -62,7 +62,10 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
     }
   }
   if (settings_.top_down) {
-    std::stable_sort(order_.begin(), order_.end(), [](const Run& x, const Run& y) { return x.height < y.height; });
+    // Ties keep the World's order (std::stable_sort would, but it takes a buffer from the heap
+    // at every step)
+    std::sort(order_.begin(), order_.end(),
+              [](const Run& x, const Run& y) { return x.height < y.height || (x.height == y.height && x.first < y.first); });
   }
   sweep_contacts_.clear();
   for (const Run& run : order_) {
