@@ -178,6 +178,11 @@ class SoftStepSolver : public RestingContactSolver {
     bool soft_fixed = false;  // one body fixed: the stiffer spring
     int first = 0, count = 0;
   };
+  // A point's parts along one row of direction d
+  struct Row {
+    Vec3 ang_a, ang_b;    // r x d
+    Vec3 turn_a, turn_b;  // I^-1 (r x d)
+  };
   // One contact point: its rows' parts and the accumulated impulses, what every sweep reads
   // first and each row's parts together (a relax sweep reads the n row's three cache lines of
   // the point's seven), then what only the substep's end and the step's end read
@@ -188,10 +193,7 @@ class SoftStepSolver : public RestingContactSolver {
     double mass[3] = {};                          // effective masses 1/K along n, t, o [kg]
     Vec3 lambda = Vec3::Zero();                   // accumulated impulses of the substep (n, t, o) [N s]
     Eigen::Vector2d coupling = Eigen::Vector2d::Zero();  // K between n and t, o [1/kg]
-    struct Row {
-      Vec3 ang_a, ang_b;    // r x d
-      Vec3 turn_a, turn_b;  // I^-1 (r x d)
-    } rows[3];              // n, t, o
+    Row rows[3];                                  // n, t, o
     bool bounce = false;                          // colliding with epsilon > 0
     double target = 0.0;                          // the bounce's -epsilon v_rel^- [m/s]
     double pushed = 0.0;                          // largest normal impulse of the step [N s]

@@ -95,7 +95,7 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
       const Vec3 r_a = c.p - A.x, r_b = c.p - B.x;  // the anchors, from the centres at the step's start
       Vec3 K;
       for (int i = 0; i < 3; ++i) {
-        Point::Row& row = pt.rows[i];
+        Row& row = pt.rows[i];
         row.ang_a = r_a.cross(pair.d[i]);
         row.ang_b = r_b.cross(pair.d[i]);
         row.turn_a = A.I_inv_world * row.ang_a;
