@@ -131,8 +131,8 @@ int SoftStepSolver::solve(std::vector<ContactBody>& bodies, std::vector<Contact>
   warm_.assign(bodies.size(), Velocity{});
   for (const Pair& pair : pairs_) {
     for (int k = pair.first; k < pair.first + pair.count; ++k) {
-      points_[static_cast<std::size_t>(k)].apply(pair, warm_[pair.a], warm_[pair.b], motion_[pair.a].inv_mass,
-                                                 motion_[pair.b].inv_mass, points_[static_cast<std::size_t>(k)].lambda);
+      const Point& pt = points_[static_cast<std::size_t>(k)];
+      pt.apply(pair, warm_[pair.a], warm_[pair.b], motion_[pair.a].inv_mass, motion_[pair.b].inv_mass, pt.lambda);
     }
   }
   const int sweeps = settings_.solve_iterations + settings_.relax_iterations;
